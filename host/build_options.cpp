@@ -1,0 +1,40 @@
+// build_options.cpp - the kernel's build options, derived from config + scene.
+#include "build_options.hpp"
+
+#include "../kernels/clrt_layout.h"
+#include "error.hpp"
+
+namespace clrt {
+
+std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth, bool device_has_fp64) {
+  if (cfg.precision == Precision::Fp64 && !device_has_fp64)
+    throw UserError("precision fp64 needs a device with cl_khr_fp64; this device has none (use --precision robust)");
+  std::string o = "-cl-std=CL1.2 -DCLRT_PREC=" + std::to_string(kernel_code(cfg.precision));
+  if (cfg.denorms_zero) o += " -cl-denorms-are-zero";
+  if (cfg.precision == Precision::Fast) o += " -cl-fast-relaxed-math";
+  if (cfg.count_rays) o += " -DCLRT_COUNT_RAYS";
+  if (cfg.specialize) {
+    bool amb = false, pt = false, dir = false, spec = false, refl = false;
+    for (const auto& l : scene.lights) {
+      amb |= l.type == LightType::Ambient;
+      pt |= l.type == LightType::Point;
+      dir |= l.type == LightType::Directional;
+    }
+    for (const auto& s : scene.spheres) {
+      spec |= s.specular != -1;
+      refl |= s.reflective > 0;
+    }
+    // With no reflective sphere the depth never matters: fold it to 0 so one
+    // program serves every depth.
+    int d = refl ? depth : 0;
+    o += " -DCLRT_SPECIALIZED -DCLRT_DEPTH=" + std::to_string(d) +
+         " -DCLRT_N_SPHERES=" + std::to_string(scene.spheres.size()) +
+         " -DCLRT_N_LIGHTS=" + std::to_string(scene.lights.size()) + " -DCLRT_HAS_AMBIENT=" + (amb ? "1" : "0") +
+         " -DCLRT_HAS_POINT=" + (pt ? "1" : "0") + " -DCLRT_HAS_DIRECTIONAL=" + (dir ? "1" : "0") +
+         " -DCLRT_HAS_SPECULAR=" + (spec ? "1" : "0") + " -DCLRT_HAS_REFLECTIVE=" + (refl && d > 0 ? "1" : "0");
+  }
+  if (!cfg.extra_options.empty()) o += " " + cfg.extra_options;
+  return o;
+}
+
+}  // namespace clrt

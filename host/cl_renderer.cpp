@@ -1,0 +1,155 @@
+// cl_renderer.cpp - buffers, kernel launches (tiled), profiling, download.
+#include "cl_renderer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+
+#include "error.hpp"
+#include "kernel_source.hpp"
+
+namespace clrt {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double event_ms(const cl::Event& ev) {
+  cl_ulong start = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+  cl_ulong end = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+  return (end - start) * 1e-6;
+}
+
+template <class T>
+cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::vector<T>& v) {
+  // Zero-sized buffers are invalid in OpenCL: keep at least one element.
+  std::vector<T> data = v.empty() ? std::vector<T>(1) : v;
+  cl::Buffer b(ctx, CL_MEM_READ_ONLY, data.size() * sizeof(T));
+  q.enqueueWriteBuffer(b, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+  return b;
+}
+
+}  // namespace
+
+ClRenderer::ClRenderer(const DeviceInfo& device, KernelConfig config) : dev_(device), cfg_(std::move(config)) {
+  ctx_ = cl::Context(dev_.device);
+  queue_ = cl::CommandQueue(ctx_, dev_.device, CL_QUEUE_PROFILING_ENABLE);
+  source_ = load_kernel_source("trace.cl", cfg_.kernel_dir);
+}
+
+void ClRenderer::prepare(const Scene& scene, int width, int height, int depth) {
+  std::string opts = build_options(cfg_, scene, depth, dev_.fp64);
+  if (opts != options_ || !kernel_()) {
+    BuildStats bs;
+    program_ = build_program(ctx_, dev_, source_, opts, &bs);
+    kernel_ = cl::Kernel(program_, "render");
+    options_ = opts;
+    timings_.build_ms = bs.ms;
+    timings_.build_cached = bs.cached;
+  } else {
+    timings_.build_ms = 0;
+    timings_.build_cached = true;
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  SceneData data = pack_scene(scene, cfg_.precision, width, height, depth);
+  params_ = upload(ctx_, queue_, std::vector<clrt_params>{data.params});
+  spheres_ = upload(ctx_, queue_, data.spheres);
+  lights_ = upload(ctx_, queue_, data.lights);
+  timings_.upload_ms = ms_since(t0);
+  width_ = width;
+  height_ = height;
+}
+
+void ClRenderer::ensure_tile_buffers(size_t pixels) {
+  if (pixels <= tile_capacity_) return;
+  out_ = cl::Buffer(ctx_, CL_MEM_WRITE_ONLY, pixels * 3 * sizeof(float));
+  aux_ = cl::Buffer(ctx_, CL_MEM_WRITE_ONLY, pixels * 2 * sizeof(cl_int));
+  counts_buf_ = cl::Buffer(ctx_, CL_MEM_WRITE_ONLY, (cfg_.count_rays ? pixels : 1) * sizeof(clrt_ray_counts));
+  tile_capacity_ = pixels;
+}
+
+double ClRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
+  const size_t n = size_t(w) * h;
+  ensure_tile_buffers(n);
+  kernel_.setArg(0, params_);
+  kernel_.setArg(1, spheres_);
+  kernel_.setArg(2, lights_);
+  kernel_.setArg(3, out_);
+  kernel_.setArg(4, aux_);
+  kernel_.setArg(5, counts_buf_);
+  kernel_.setArg(6, cl_int(x0));
+  kernel_.setArg(7, cl_int(y0));
+  kernel_.setArg(8, cl_int(w));
+  kernel_.setArg(9, cl_int(h));
+  cl::NDRange global(w, h), local = cl::NullRange;
+  if (local_x_ > 0 && local_y_ > 0) {
+    // Pad the global size to a multiple of the local size; the kernel
+    // ignores work-items outside the tile.
+    global = cl::NDRange((w + local_x_ - 1) / local_x_ * local_x_, (h + local_y_ - 1) / local_y_ * local_y_);
+    local = cl::NDRange(local_x_, local_y_);
+  }
+  cl::Event ev;
+  queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, global, local, nullptr, &ev);
+  ev.wait();
+  double kms = event_ms(ev);
+
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<float> rgb(n * 3);
+  std::vector<cl_int> aux(n * 2);
+  queue_.enqueueReadBuffer(out_, CL_TRUE, 0, rgb.size() * sizeof(float), rgb.data());
+  queue_.enqueueReadBuffer(aux_, CL_TRUE, 0, aux.size() * sizeof(cl_int), aux.data());
+  if (cfg_.count_rays) {
+    std::vector<clrt_ray_counts> rc(n);
+    queue_.enqueueReadBuffer(counts_buf_, CL_TRUE, 0, rc.size() * sizeof(clrt_ray_counts), rc.data());
+    for (const auto& c : rc) {
+      counts_.primary += uint32_t(c.primary);
+      counts_.shadow += uint32_t(c.shadow);
+      counts_.reflection += uint32_t(c.reflection);
+      counts_.sphere_tests += uint32_t(c.sphere_tests);
+    }
+  }
+  for (int ty = 0; ty < h; ++ty) {
+    for (int tx = 0; tx < w; ++tx) {
+      size_t s = size_t(ty) * w + tx;
+      size_t d = size_t(y0 + ty) * dst.width + (x0 + tx);
+      for (int c = 0; c < 3; ++c) dst.rgb[d * 3 + c] = rgb[s * 3 + c];
+      dst.hit[d] = aux[s * 2];
+      dst.shadowed[d] = aux[s * 2 + 1];
+    }
+  }
+  timings_.download_ms += ms_since(t0);
+  return kms;
+}
+
+Image ClRenderer::render() {
+  if (!kernel_()) throw std::logic_error("ClRenderer::render before prepare");
+  auto t0 = std::chrono::steady_clock::now();
+  Image img(width_, height_);
+  counts_ = {};
+  timings_.kernel_ms = timings_.download_ms = 0;
+  timings_.launches = 0;
+  // Tiles: bounded by max_tile_ and by the device's largest allocation.
+  size_t max_pixels = std::max<size_t>(1, dev_.max_alloc / (3 * sizeof(float)));
+  int tile = max_tile_ > 0 ? max_tile_ : std::max(width_, height_);
+  while (size_t(tile) * tile > max_pixels && tile > 16) tile /= 2;
+  for (int y0 = 0; y0 < height_; y0 += tile) {
+    for (int x0 = 0; x0 < width_; x0 += tile) {
+      timings_.kernel_ms += render_tile(x0, y0, std::min(tile, width_ - x0), std::min(tile, height_ - y0), img);
+      ++timings_.launches;
+    }
+  }
+  timings_.total_ms = ms_since(t0);
+  return img;
+}
+
+Image render_opencl(const Scene& scene, int width, int height, int depth, const std::string& device_spec,
+                    const KernelConfig& cfg, RenderTimings* timings) {
+  ClRenderer r(select_device(device_spec), cfg);
+  r.prepare(scene, width, height, depth);
+  Image img = r.render();
+  if (timings) *timings = r.timings();
+  return img;
+}
+
+}  // namespace clrt

@@ -1,0 +1,77 @@
+// cl_renderer.hpp - renders a scene with the OpenCL kernel on one device.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "build_options.hpp"
+#include "cl.hpp"
+#include "device.hpp"
+#include "image.hpp"
+#include "program.hpp"
+#include "scene.hpp"
+#include "scene_buffers.hpp"
+
+namespace clrt {
+
+struct RayCounts {
+  uint64_t primary = 0, shadow = 0, reflection = 0, sphere_tests = 0;
+  uint64_t total() const { return primary + shadow + reflection; }
+};
+
+struct RenderTimings {
+  double build_ms = 0;     // program build (or cache load)
+  bool build_cached = false;
+  double upload_ms = 0;    // scene buffers to the device
+  double kernel_ms = 0;    // sum of kernel times from profiling events
+  double download_ms = 0;  // image back to the host
+  double total_ms = 0;     // wall time of render(), excluding build/upload
+  int launches = 0;        // kernel launches (tiles)
+};
+
+class ClRenderer {
+ public:
+  ClRenderer(const DeviceInfo& device, KernelConfig config);
+
+  // Builds the (scene-specialized) program and uploads the scene. Must be
+  // called before render(); calling again with another scene/depth rebuilds.
+  void prepare(const Scene& scene, int width, int height, int depth);
+
+  // Renders the whole frame (tiled when larger than the tile limit).
+  Image render();
+  // Renders one tile [x0, x0+w) x [y0, y0+h) into `dst` (a full-size image).
+  // Returns the kernel time in ms from the profiling event.
+  double render_tile(int x0, int y0, int w, int h, Image& dst);
+
+  const RenderTimings& timings() const { return timings_; }
+  const RayCounts& ray_counts() const { return counts_; }
+  const std::string& options() const { return options_; }
+  const DeviceInfo& device() const { return dev_; }
+  // Largest tile edge in pixels (0 = whole frame in one launch).
+  void set_max_tile(int pixels) { max_tile_ = pixels; }
+  // Local work size (0,0 = let the OpenCL implementation choose).
+  void set_local_size(int lx, int ly) { local_x_ = lx, local_y_ = ly; }
+
+ private:
+  void ensure_tile_buffers(size_t pixels);
+
+  DeviceInfo dev_;
+  KernelConfig cfg_;
+  cl::Context ctx_;
+  cl::CommandQueue queue_;
+  cl::Program program_;
+  cl::Kernel kernel_;
+  std::string options_, source_;
+  cl::Buffer params_, spheres_, lights_, out_, aux_, counts_buf_;
+  size_t tile_capacity_ = 0;
+  int width_ = 0, height_ = 0;
+  int max_tile_ = 0;
+  int local_x_ = 0, local_y_ = 0;
+  RenderTimings timings_;
+  RayCounts counts_;
+};
+
+// Convenience: one device chosen by spec, whole frame.
+Image render_opencl(const Scene& scene, int width, int height, int depth, const std::string& device_spec,
+                    const KernelConfig& cfg, RenderTimings* timings = nullptr);
+
+}  // namespace clrt

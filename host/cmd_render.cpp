@@ -1,0 +1,34 @@
+// cmd_render.cpp - `clrt render SCENE -o OUT`.
+#include <cstdio>
+#include <memory>
+
+#include "cli_common.hpp"
+#include "engine.hpp"
+#include "error.hpp"
+
+namespace clrt {
+
+void add_render_command(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  auto out = std::make_shared<std::string>();
+  auto* cmd = app.add_subcommand("render", "Render a scene to an image (png, ppm, exr, ...)");
+  add_render_options(cmd, *o);
+  cmd->add_option("-o,--output", *out, "Output image; the extension picks the format")->required();
+  cmd->callback([o, out] {
+    o->validate();
+    check_output_format(*out);  // fail before rendering
+    Scene scene = load_scene(o->scene_path);
+    int depth = o->effective_depth(scene);
+    EngineRun run;
+    Image img = run_engine(o->engine, scene, *o, depth, &run);
+    write_image(img, *out);
+    if (o->engine == "opencl")
+      std::printf("%s: %dx%d depth %d on %s: kernel %.2f ms, build %.1f ms%s\n", out->c_str(), o->width, o->height,
+                  depth, run.device.c_str(), run.cl.kernel_ms, run.cl.build_ms, run.cl.build_cached ? " (cached)" : "");
+    else
+      std::printf("%s: %dx%d depth %d with the reference renderer: %.1f ms\n", out->c_str(), o->width, o->height, depth,
+                  run.wall_ms);
+  });
+}
+
+}  // namespace clrt

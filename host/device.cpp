@@ -1,0 +1,124 @@
+// device.cpp - platform/device enumeration and selection by index or name.
+#include "device.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+#include "error.hpp"
+
+namespace clrt {
+namespace {
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string type_name(cl_device_type t) {
+  std::string out;
+  if (t & CL_DEVICE_TYPE_CPU) out += "CPU";
+  if (t & CL_DEVICE_TYPE_GPU) out += out.empty() ? "GPU" : "+GPU";
+  if (t & CL_DEVICE_TYPE_ACCELERATOR) out += out.empty() ? "ACCELERATOR" : "+ACCELERATOR";
+  if (out.empty()) out = "OTHER";
+  return out;
+}
+
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back())))) s.pop_back();
+  return s;
+}
+
+bool all_digits(const std::string& s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  std::vector<cl::Platform> platforms;
+  try {
+    cl::Platform::get(&platforms);
+  } catch (const cl::Error& e) {
+    // The ICD loader reports CL_PLATFORM_NOT_FOUND_KHR (-1001) with no ICDs.
+    throw DeviceError("no OpenCL platform found (" + cl_error_name(e.err()) +
+                      "); install an OpenCL driver such as pocl-opencl-icd, or use --engine reference");
+  }
+  if (platforms.empty())
+    throw DeviceError("no OpenCL platform found; install an OpenCL driver such as pocl-opencl-icd, or use --engine reference");
+  std::vector<DeviceInfo> out;
+  for (auto& p : platforms) {
+    std::vector<cl::Device> devs;
+    try {
+      p.getDevices(CL_DEVICE_TYPE_ALL, &devs);
+    } catch (const cl::Error&) {
+      continue;  // a platform with no devices (CL_DEVICE_NOT_FOUND)
+    }
+    for (auto& d : devs) {
+      DeviceInfo info;
+      info.index = static_cast<int>(out.size());
+      info.platform = p;
+      info.device = d;
+      info.name = trim(d.getInfo<CL_DEVICE_NAME>());
+      info.platform_name = trim(p.getInfo<CL_PLATFORM_NAME>());
+      info.vendor = trim(d.getInfo<CL_DEVICE_VENDOR>());
+      info.type = type_name(d.getInfo<CL_DEVICE_TYPE>());
+      info.version = trim(d.getInfo<CL_DEVICE_VERSION>());
+      info.c_version = trim(d.getInfo<CL_DEVICE_OPENCL_C_VERSION>());
+      info.driver = trim(d.getInfo<CL_DRIVER_VERSION>());
+      info.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+      info.fp64 = d.getInfo<CL_DEVICE_DOUBLE_FP_CONFIG>() != 0;
+      info.max_alloc = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+      info.global_mem = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+      info.max_work_group = d.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+      info.clock_mhz = d.getInfo<CL_DEVICE_MAX_CLOCK_FREQUENCY>();
+      info.native_float_width = d.getInfo<CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT>();
+      out.push_back(std::move(info));
+    }
+  }
+  if (out.empty()) throw DeviceError("no OpenCL device found on any platform; use --engine reference");
+  return out;
+}
+
+std::vector<DeviceInfo> select_devices(const std::string& spec_in) {
+  auto all = list_devices();
+  const std::string spec = lower(spec_in);
+  if (spec.empty() || spec == "default") {
+    for (auto& d : all)
+      if (d.type.find("GPU") != std::string::npos) return {d};
+    return {all.front()};
+  }
+  if (spec == "all") return all;
+  std::vector<DeviceInfo> picked;
+  std::stringstream ss(spec);
+  std::string part;
+  while (std::getline(ss, part, ',')) {
+    bool found = false;
+    if (all_digits(part)) {
+      size_t idx = std::stoul(part);
+      if (idx < all.size()) picked.push_back(all[idx]), found = true;
+    } else {
+      for (auto& d : all) {
+        if (lower(d.name).find(part) != std::string::npos || lower(d.type).find(part) != std::string::npos ||
+            lower(d.platform_name).find(part) != std::string::npos) {
+          picked.push_back(d);
+          found = true;
+          break;
+        }
+      }
+    }
+    if (!found) {
+      std::string have;
+      for (auto& d : all) have += (have.empty() ? "" : ", ") + std::to_string(d.index) + ": " + d.name;
+      throw UserError("unknown device \"" + part + "\" (available: " + have + ")");
+    }
+  }
+  return picked;
+}
+
+DeviceInfo select_device(const std::string& spec) {
+  auto v = select_devices(spec);
+  return v.front();
+}
+
+}  // namespace clrt

@@ -1,0 +1,34 @@
+// device.hpp - OpenCL platform/device enumeration and selection.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "cl.hpp"
+
+namespace clrt {
+
+struct DeviceInfo {
+  int index = 0;  // global index over all platforms, as `clrt devices` shows
+  cl::Platform platform;
+  cl::Device device;
+  std::string name, platform_name, vendor, type, version, c_version, driver;
+  cl_uint compute_units = 0;
+  bool fp64 = false;
+  cl_ulong max_alloc = 0, global_mem = 0;
+  size_t max_work_group = 0;
+  cl_uint clock_mhz = 0;
+  cl_uint native_float_width = 0;
+};
+
+// Every device of every platform. Throws DeviceError("no OpenCL platform ...")
+// when the ICD loader finds none.
+std::vector<DeviceInfo> list_devices();
+
+// Selects devices by SPEC: "" (first GPU, else first device), an index, a
+// comma-separated list of indices, "all", or a case-insensitive substring of
+// the device name, type (cpu/gpu/accelerator) or platform name (first match).
+// Unknown SPEC -> UserError listing what exists.
+std::vector<DeviceInfo> select_devices(const std::string& spec);
+DeviceInfo select_device(const std::string& spec);
+
+}  // namespace clrt

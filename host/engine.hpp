@@ -1,0 +1,22 @@
+// engine.hpp - run either engine on a scene with the CLI's options.
+#pragma once
+#include <string>
+
+#include "cl_renderer.hpp"
+#include "cli_common.hpp"
+#include "image.hpp"
+#include "scene.hpp"
+
+namespace clrt {
+
+struct EngineRun {
+  std::string engine;      // "opencl" or "reference"
+  std::string device;      // device name (opencl)
+  std::string options;     // build options (opencl)
+  double wall_ms = 0;      // reference: render time; opencl: render() wall time
+  RenderTimings cl;        // opencl details
+};
+
+Image run_engine(const std::string& engine, const Scene& scene, const RenderOptions& o, int depth, EngineRun* run);
+
+}  // namespace clrt

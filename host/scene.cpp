@@ -1,0 +1,228 @@
+// scene.cpp - strict JSON scene loader: unknown keys, wrong types, non-finite
+// numbers and out-of-range values are all rejected with a one-line message.
+#include "scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "../kernels/clrt_layout.h"
+#include "error.hpp"
+
+namespace clrt {
+namespace {
+
+using json = nlohmann::json;
+
+class Parser {
+ public:
+  explicit Parser(std::string name) : name_(std::move(name)) {}
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw UserError(name_ + ": " + (where.empty() ? "" : where + ": ") + what);
+  }
+
+  void only_keys(const json& obj, const std::string& where,
+                 std::initializer_list<const char*> keys) const {
+    if (!obj.is_object()) fail(where, "expected an object, got " + type_of(obj));
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      bool known = false;
+      for (const char* k : keys) known = known || it.key() == k;
+      if (!known) fail(where, "unknown key \"" + it.key() + "\"");
+    }
+  }
+
+  double number(const json& j, const std::string& where) const {
+    if (!j.is_number()) fail(where, "expected a number, got " + type_of(j));
+    double v = j.get<double>();
+    if (!std::isfinite(v)) fail(where, "number is not finite");
+    return v;
+  }
+
+  double number_in(const json& j, const std::string& where, double lo, double hi) const {
+    double v = number(j, where);
+    if (v < lo || v > hi) fail(where, "must be in [" + fmt(lo) + ", " + fmt(hi) + "] (got " + fmt(v) + ")");
+    return v;
+  }
+
+  Vec3 vec3(const json& j, const std::string& where) const {
+    if (!j.is_array() || j.size() != 3) fail(where, "expected an array of 3 numbers");
+    return {number(j[0], where + "[0]"), number(j[1], where + "[1]"), number(j[2], where + "[2]")};
+  }
+
+  Vec3 color(const json& j, const std::string& where) const {
+    Vec3 c = vec3(j, where);
+    for (double v : {c.x, c.y, c.z})
+      if (v < 0 || v > 255) fail(where, "color components must be in [0, 255] (got " + fmt(v) + ")");
+    return c;
+  }
+
+  static std::string type_of(const json& j) { return j.type_name(); }
+  static std::string fmt(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+  }
+
+  Scene parse(const json& root) const {
+    Scene s;
+    only_keys(root, "", {"camera", "background", "recursion_depth", "epsilon", "spheres", "lights"});
+    if (root.contains("camera")) parse_camera(root["camera"], s.camera);
+    if (root.contains("background")) s.background = color(root["background"], "background");
+    if (root.contains("recursion_depth")) {
+      const json& d = root["recursion_depth"];
+      if (!d.is_number_integer()) fail("recursion_depth", "expected an integer, got " + type_of(d));
+      long long v = d.get<long long>();
+      if (v < 0 || v > CLRT_MAX_DEPTH)
+        fail("recursion_depth", "must be in [0, " + std::to_string(CLRT_MAX_DEPTH) + "] (got " + std::to_string(v) + ")");
+      s.recursion_depth = static_cast<int>(v);
+    }
+    if (root.contains("epsilon")) s.epsilon = number_in(root["epsilon"], "epsilon", 0, 1e30);
+    if (root.contains("spheres")) {
+      const json& arr = root["spheres"];
+      if (!arr.is_array()) fail("spheres", "expected an array, got " + type_of(arr));
+      for (size_t i = 0; i < arr.size(); ++i) s.spheres.push_back(parse_sphere(arr[i], "spheres[" + std::to_string(i) + "]"));
+    }
+    if (root.contains("lights")) {
+      const json& arr = root["lights"];
+      if (!arr.is_array()) fail("lights", "expected an array, got " + type_of(arr));
+      for (size_t i = 0; i < arr.size(); ++i) s.lights.push_back(parse_light(arr[i], "lights[" + std::to_string(i) + "]"));
+    }
+    return s;
+  }
+
+  void parse_camera(const json& j, Camera& c) const {
+    only_keys(j, "camera", {"position", "rotation", "viewport", "projection_plane_d"});
+    if (j.contains("position")) c.position = vec3(j["position"], "camera.position");
+    if (j.contains("rotation")) {
+      const json& r = j["rotation"];
+      if (!r.is_array() || r.size() != 3) fail("camera.rotation", "expected a 3x3 array of numbers");
+      for (int row = 0; row < 3; ++row) {
+        Vec3 v = vec3(r[row], "camera.rotation[" + std::to_string(row) + "]");
+        c.rotation[row * 3 + 0] = v.x;
+        c.rotation[row * 3 + 1] = v.y;
+        c.rotation[row * 3 + 2] = v.z;
+      }
+    }
+    if (j.contains("viewport")) {
+      const json& v = j["viewport"];
+      if (!v.is_array() || v.size() != 2) fail("camera.viewport", "expected an array of 2 numbers");
+      c.viewport_w = number(v[0], "camera.viewport[0]");
+      c.viewport_h = number(v[1], "camera.viewport[1]");
+      if (!(c.viewport_w > 0) || !(c.viewport_h > 0)) fail("camera.viewport", "sizes must be > 0");
+    }
+    if (j.contains("projection_plane_d")) {
+      c.projection_plane_d = number(j["projection_plane_d"], "camera.projection_plane_d");
+      if (!(c.projection_plane_d > 0)) fail("camera.projection_plane_d", "must be > 0");
+    }
+  }
+
+  Sphere parse_sphere(const json& j, const std::string& w) const {
+    only_keys(j, w, {"center", "radius", "color", "specular", "reflective"});
+    Sphere s;
+    if (!j.contains("center")) fail(w, "missing \"center\"");
+    if (!j.contains("radius")) fail(w, "missing \"radius\"");
+    if (!j.contains("color")) fail(w, "missing \"color\"");
+    s.center = vec3(j["center"], w + ".center");
+    s.radius = number(j["radius"], w + ".radius");
+    if (!(s.radius > 0)) fail(w + ".radius", "must be > 0 (got " + fmt(s.radius) + ")");
+    s.color = color(j["color"], w + ".color");
+    if (j.contains("specular")) {
+      s.specular = number(j["specular"], w + ".specular");
+      if (s.specular != -1 && s.specular < 0) fail(w + ".specular", "must be -1 (matte) or >= 0 (got " + fmt(s.specular) + ")");
+    }
+    if (j.contains("reflective")) s.reflective = number_in(j["reflective"], w + ".reflective", 0, 1);
+    return s;
+  }
+
+  Light parse_light(const json& j, const std::string& w) const {
+    if (!j.is_object()) fail(w, "expected an object, got " + type_of(j));
+    if (!j.contains("type")) fail(w, "missing \"type\"");
+    if (!j["type"].is_string()) fail(w + ".type", "expected a string");
+    const std::string type = j["type"].get<std::string>();
+    Light l;
+    if (type == "ambient") {
+      only_keys(j, w, {"type", "intensity"});
+      l.type = LightType::Ambient;
+    } else if (type == "point") {
+      only_keys(j, w, {"type", "intensity", "position"});
+      l.type = LightType::Point;
+      if (!j.contains("position")) fail(w, "point light needs \"position\"");
+      l.vec = vec3(j["position"], w + ".position");
+    } else if (type == "directional") {
+      only_keys(j, w, {"type", "intensity", "direction"});
+      l.type = LightType::Directional;
+      if (!j.contains("direction")) fail(w, "directional light needs \"direction\"");
+      l.vec = vec3(j["direction"], w + ".direction");
+      if (l.vec.x == 0 && l.vec.y == 0 && l.vec.z == 0) fail(w + ".direction", "must not be the zero vector");
+      if (!std::isfinite(dot(l.vec, l.vec))) fail(w + ".direction", "is too long (its squared length overflows)");
+    } else {
+      fail(w + ".type", "unknown light type \"" + type + "\" (expected ambient, point or directional)");
+    }
+    if (!j.contains("intensity")) fail(w, "missing \"intensity\"");
+    l.intensity = number_in(j["intensity"], w + ".intensity", 0, 1e30);
+    return l;
+  }
+
+ private:
+  std::string name_;
+};
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& name) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::exception& e) {
+    std::string msg = e.what();
+    // nlohmann prefixes "[json.exception.parse_error.101] "; keep the rest.
+    auto pos = msg.find("] ");
+    if (pos != std::string::npos) msg = msg.substr(pos + 2);
+    throw UserError(name + ": malformed JSON: " + msg);
+  }
+  return Parser(name).parse(root);
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError(path + ": cannot open scene file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw UserError(path + ": cannot read scene file");
+  return parse_scene(ss.str(), path);
+}
+
+std::string scene_to_json(const Scene& s) {
+  auto v3 = [](Vec3 v) { return json::array({v.x, v.y, v.z}); };
+  json root;
+  const auto& r = s.camera.rotation;
+  root["camera"] = {{"position", v3(s.camera.position)},
+                    {"rotation", json::array({json::array({r[0], r[1], r[2]}), json::array({r[3], r[4], r[5]}),
+                                              json::array({r[6], r[7], r[8]})})},
+                    {"viewport", json::array({s.camera.viewport_w, s.camera.viewport_h})},
+                    {"projection_plane_d", s.camera.projection_plane_d}};
+  root["background"] = v3(s.background);
+  root["recursion_depth"] = s.recursion_depth;
+  root["epsilon"] = s.epsilon;
+  root["spheres"] = json::array();
+  for (const auto& sp : s.spheres)
+    root["spheres"].push_back({{"center", v3(sp.center)},
+                               {"radius", sp.radius},
+                               {"color", v3(sp.color)},
+                               {"specular", sp.specular},
+                               {"reflective", sp.reflective}});
+  root["lights"] = json::array();
+  for (const auto& l : s.lights) {
+    json jl = {{"intensity", l.intensity}};
+    if (l.type == LightType::Ambient) jl["type"] = "ambient";
+    if (l.type == LightType::Point) jl["type"] = "point", jl["position"] = v3(l.vec);
+    if (l.type == LightType::Directional) jl["type"] = "directional", jl["direction"] = v3(l.vec);
+    root["lights"].push_back(jl);
+  }
+  return root.dump(2);
+}
+
+}  // namespace clrt
