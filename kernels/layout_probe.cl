@@ -1,0 +1,32 @@
+/* layout_probe.cl - reports the kernel compiler's view of the shared layouts
+ * (sizes and member offsets), compared with the host's in tests/. */
+#include "clrt_layout.h"
+
+#define OFF(T, m) ((int)(size_t)(&((T*)0)->m))
+
+__kernel void layout_probe(__global int* out) {
+  int i = 0;
+  out[i++] = (int)sizeof(clrt_sphere);
+  out[i++] = OFF(clrt_sphere, radius);
+  out[i++] = OFF(clrt_sphere, center_lo);
+  out[i++] = OFF(clrt_sphere, radius_lo);
+  out[i++] = OFF(clrt_sphere, color);
+  out[i++] = OFF(clrt_sphere, specular);
+  out[i++] = OFF(clrt_sphere, reflective);
+  out[i++] = (int)sizeof(clrt_light);
+  out[i++] = OFF(clrt_light, intensity);
+  out[i++] = OFF(clrt_light, vec);
+  out[i++] = OFF(clrt_light, vec_lo);
+  out[i++] = (int)sizeof(clrt_params);
+  out[i++] = OFF(clrt_params, n_lights);
+  out[i++] = OFF(clrt_params, viewport);
+  out[i++] = OFF(clrt_params, proj_d);
+  out[i++] = OFF(clrt_params, epsilon);
+  out[i++] = OFF(clrt_params, origin);
+  out[i++] = OFF(clrt_params, origin_lo);
+  out[i++] = OFF(clrt_params, rotation);
+  out[i++] = OFF(clrt_params, rotation_lo);
+  out[i++] = OFF(clrt_params, background);
+  out[i++] = (int)sizeof(clrt_ray_counts);
+  out[i++] = OFF(clrt_ray_counts, sphere_tests);
+}
