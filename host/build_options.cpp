@@ -6,6 +6,20 @@
 
 namespace clrt {
 
+int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev) {
+  if (!cfg.specialize || cfg.precision == Precision::Fp64) return 1;
+  if (dev.type.find("CPU") == std::string::npos) return 1;
+  return dev.native_float_width >= 16 ? 16 : 8;
+}
+
+int kernel_lanes(const KernelConfig& cfg) {
+  if (cfg.lanes == 0) return cfg.specialize && cfg.precision != Precision::Fp64 ? 8 : 1;
+  if (cfg.lanes != 1 && cfg.lanes != 4 && cfg.lanes != 8 && cfg.lanes != 16)
+    throw UserError("--lanes must be 1, 4, 8 or 16 (got " + std::to_string(cfg.lanes) + ")");
+  if (cfg.lanes > 1 && cfg.precision == Precision::Fp64) throw UserError("--lanes: fp64 kernels are scalar (use 1)");
+  return cfg.lanes;
+}
+
 std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth, bool device_has_fp64) {
   if (cfg.precision == Precision::Fp64 && !device_has_fp64)
     throw UserError("precision fp64 needs a device with cl_khr_fp64; this device has none (use --precision robust)");
@@ -13,6 +27,7 @@ std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth
   if (cfg.denorms_zero) o += " -cl-denorms-are-zero";
   if (cfg.precision == Precision::Fast) o += " -cl-fast-relaxed-math";
   if (cfg.count_rays) o += " -DCLRT_COUNT_RAYS";
+  if (int lanes = kernel_lanes(cfg); lanes > 1) o += " -DCLRT_LANES=" + std::to_string(lanes);
   if (cfg.specialize) {
     bool amb = false, pt = false, dir = false, spec = false, refl = false;
     for (const auto& l : scene.lights) {
@@ -32,6 +47,15 @@ std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth
          " -DCLRT_N_LIGHTS=" + std::to_string(scene.lights.size()) + " -DCLRT_HAS_AMBIENT=" + (amb ? "1" : "0") +
          " -DCLRT_HAS_POINT=" + (pt ? "1" : "0") + " -DCLRT_HAS_DIRECTIONAL=" + (dir ? "1" : "0") +
          " -DCLRT_HAS_SPECULAR=" + (spec ? "1" : "0") + " -DCLRT_HAS_REFLECTIVE=" + (refl && d > 0 ? "1" : "0");
+    if (!scene.lights.empty()) {
+      o += " -DCLRT_LIGHT_TYPES=";
+      for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const LightType t = scene.lights[i].type;
+        o += (i ? "," : "") + std::to_string(t == LightType::Ambient ? CLRT_LIGHT_AMBIENT
+                                             : t == LightType::Point ? CLRT_LIGHT_POINT
+                                                                     : CLRT_LIGHT_DIRECTIONAL);
+      }
+    }
   }
   if (!cfg.extra_options.empty()) o += " " + cfg.extra_options;
   return o;

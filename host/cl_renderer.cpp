@@ -33,6 +33,7 @@ cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::
 }  // namespace
 
 ClRenderer::ClRenderer(const DeviceInfo& device, KernelConfig config) : dev_(device), cfg_(std::move(config)) {
+  if (cfg_.lanes == 0) cfg_.lanes = default_lanes(cfg_, dev_);
   ctx_ = cl::Context(dev_.device);
   queue_ = cl::CommandQueue(ctx_, dev_.device, CL_QUEUE_PROFILING_ENABLE);
   source_ = load_kernel_source("trace.cl", cfg_.kernel_dir);
@@ -42,8 +43,12 @@ void ClRenderer::prepare(const Scene& scene, int width, int height, int depth) {
   std::string opts = build_options(cfg_, scene, depth, dev_.fp64);
   if (opts != options_ || !kernel_()) {
     BuildStats bs;
-    program_ = build_program(ctx_, dev_, source_, opts, &bs);
+    program_ = build_program(ctx_, dev_, source_, opts, &bs, BuildFlags{cfg_.use_cache, cfg_.verbose});
     kernel_ = cl::Kernel(program_, "render");
+    // Default local size: (preferred multiple, 1), within the kernel's limit.
+    size_t pm = kernel_.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(dev_.device);
+    size_t max_wg = kernel_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(dev_.device);
+    default_local_x_ = int(std::max<size_t>(1, std::min(pm, max_wg)));
     options_ = opts;
     timings_.build_ms = bs.ms;
     timings_.build_cached = bs.cached;
@@ -82,13 +87,16 @@ double ClRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
   kernel_.setArg(7, cl_int(y0));
   kernel_.setArg(8, cl_int(w));
   kernel_.setArg(9, cl_int(h));
-  cl::NDRange global(w, h), local = cl::NullRange;
-  if (local_x_ > 0 && local_y_ > 0) {
-    // Pad the global size to a multiple of the local size; the kernel
-    // ignores work-items outside the tile.
-    global = cl::NDRange((w + local_x_ - 1) / local_x_ * local_x_, (h + local_y_ - 1) / local_y_ * local_y_);
-    local = cl::NDRange(local_x_, local_y_);
-  }
+  // Each work-item shades kernel_lanes(cfg_) adjacent pixels of a row.
+  const int lanes = kernel_lanes(cfg_), gw = (w + lanes - 1) / lanes;
+  // Always an explicit local size: with NullRange the implementation picks
+  // one from the global size, which changes with every band height, and
+  // PoCL compiles a new work-group function for each (measured: 1.2 s per
+  // 640x480 frame of 5 ms bands instead of 20 ms; docs/performance.md).
+  const int lx = local_x_ > 0 ? local_x_ : default_local_x_, ly = local_y_ > 0 ? local_y_ : 1;
+  // Pad the global size to a multiple of the local size; the kernel ignores
+  // work-items outside the tile.
+  cl::NDRange global((gw + lx - 1) / lx * lx, (h + ly - 1) / ly * ly), local(lx, ly);
   cl::Event ev;
   queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, global, local, nullptr, &ev);
   ev.wait();
@@ -122,24 +130,26 @@ double ClRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
   return kms;
 }
 
+void ClRenderer::begin_frame() {
+  counts_ = {};
+  timings_.kernel_ms = timings_.download_ms = timings_.total_ms = 0;
+  timings_.launches = 0;
+}
+
+void ClRenderer::end_frame(const DeviceShare& share, double wall_ms) {
+  share_ = share;
+  timings_.kernel_ms = share.kernel_ms;
+  timings_.launches = share.tiles;
+  timings_.total_ms = wall_ms;
+}
+
 Image ClRenderer::render() {
   if (!kernel_()) throw std::logic_error("ClRenderer::render before prepare");
   auto t0 = std::chrono::steady_clock::now();
   Image img(width_, height_);
-  counts_ = {};
-  timings_.kernel_ms = timings_.download_ms = 0;
-  timings_.launches = 0;
-  // Tiles: bounded by max_tile_ and by the device's largest allocation.
-  size_t max_pixels = std::max<size_t>(1, dev_.max_alloc / (3 * sizeof(float)));
-  int tile = max_tile_ > 0 ? max_tile_ : std::max(width_, height_);
-  while (size_t(tile) * tile > max_pixels && tile > 16) tile /= 2;
-  for (int y0 = 0; y0 < height_; y0 += tile) {
-    for (int x0 = 0; x0 < width_; x0 += tile) {
-      timings_.kernel_ms += render_tile(x0, y0, std::min(tile, width_ - x0), std::min(tile, height_ - y0), img);
-      ++timings_.launches;
-    }
-  }
-  timings_.total_ms = ms_since(t0);
+  begin_frame();
+  auto shares = render_bands({this}, img, policy_);
+  end_frame(shares[0], ms_since(t0));
   return img;
 }
 

@@ -10,6 +10,7 @@
 #include "program.hpp"
 #include "scene.hpp"
 #include "scene_buffers.hpp"
+#include "tile_scheduler.hpp"
 
 namespace clrt {
 
@@ -36,8 +37,13 @@ class ClRenderer {
   // called before render(); calling again with another scene/depth rebuilds.
   void prepare(const Scene& scene, int width, int height, int depth);
 
-  // Renders the whole frame (tiled when larger than the tile limit).
+  // Renders the whole frame in bands (see tile_scheduler.hpp).
   Image render();
+  // Resets ray counts and per-frame timings (render() does this itself;
+  // callers driving render_tile() directly, like MultiRenderer, call it).
+  void begin_frame();
+  // Records a frame's totals from the scheduler (kernel ms, launches, wall).
+  void end_frame(const DeviceShare& share, double wall_ms);
   // Renders one tile [x0, x0+w) x [y0, y0+h) into `dst` (a full-size image).
   // Returns the kernel time in ms from the profiling event.
   double render_tile(int x0, int y0, int w, int h, Image& dst);
@@ -46,9 +52,12 @@ class ClRenderer {
   const RayCounts& ray_counts() const { return counts_; }
   const std::string& options() const { return options_; }
   const DeviceInfo& device() const { return dev_; }
-  // Largest tile edge in pixels (0 = whole frame in one launch).
-  void set_max_tile(int pixels) { max_tile_ = pixels; }
-  // Local work size (0,0 = let the OpenCL implementation choose).
+  int width() const { return width_; }
+  int height() const { return height_; }
+  void set_tile_policy(const TilePolicy& p) { policy_ = p; }
+  const TilePolicy& tile_policy() const { return policy_; }
+  const DeviceShare& last_share() const { return share_; }
+  // Local work size (0,0 = (preferred work-group size multiple, 1)).
   void set_local_size(int lx, int ly) { local_x_ = lx, local_y_ = ly; }
 
  private:
@@ -64,8 +73,10 @@ class ClRenderer {
   cl::Buffer params_, spheres_, lights_, out_, aux_, counts_buf_;
   size_t tile_capacity_ = 0;
   int width_ = 0, height_ = 0;
-  int max_tile_ = 0;
+  TilePolicy policy_;
+  DeviceShare share_;
   int local_x_ = 0, local_y_ = 0;
+  int default_local_x_ = 1;  // set when the kernel is built
   RenderTimings timings_;
   RayCounts counts_;
 };

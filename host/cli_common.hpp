@@ -4,6 +4,7 @@
 #include <string>
 
 #include "build_options.hpp"
+#include "tile_scheduler.hpp"
 #include "scene.hpp"
 
 namespace clrt {
@@ -14,20 +15,28 @@ constexpr long long kMaxImagePixels = 64LL * 1024 * 1024;
 struct RenderOptions {
   std::string scene_path;
   int width = 600, height = 600;
-  int depth = -1;  // -1 = the scene's recursion_depth
+  // --depth accepts only [0, CLRT_MAX_DEPTH]; without it the scene's
+  // recursion_depth is used (kSceneDepth is never a user value).
+  static constexpr int kSceneDepth = -1;
+  int depth = kSceneDepth;
   std::string engine = "opencl";
   std::string device;  // "" = default device
   std::string precision = "robust";
   bool no_specialize = false;
   bool no_ftz = false;
+  int lanes = 0;          // pixels per work-item, 0 = default
+  bool no_cache = false;  // bypass the program binary cache
+  bool verbose = false;   // log build options / cache use on stderr
   std::string kernel_dir;
   std::string local_size;  // "WxH" or ""
-  int max_tile = 0;
+  int band_rows = 0;            // fixed band height, 0 = adaptive
+  double max_launch_ms = -1;    // -1 = device default (500 ms GPU, none CPU)
   std::string cl_options;  // extra build options (development)
 
   // Validates and returns the kernel configuration (UserError otherwise).
   KernelConfig kernel_config() const;
-  int effective_depth(const Scene& s) const { return depth >= 0 ? depth : s.recursion_depth; }
+  TilePolicy tile_policy() const { return TilePolicy{max_launch_ms, band_rows}; }
+  int effective_depth(const Scene& s) const { return depth == kSceneDepth ? s.recursion_depth : depth; }
   void validate() const;
 };
 
@@ -41,5 +50,9 @@ void parse_local_size(const std::string& s, int& lx, int& ly);
 void add_devices_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);
+void add_accuracy_command(CLI::App& app);
+void add_stability_command(CLI::App& app);
 
 }  // namespace clrt

@@ -5,6 +5,7 @@
 
 #include "cli_common.hpp"
 #include "compare.hpp"
+#include "compare_json.hpp"
 #include "engine.hpp"
 #include "error.hpp"
 
@@ -36,24 +37,12 @@ void add_compare_command(CLI::App& app) {
                           {"precision", o->precision},
                           {"device", cl_run.device},
                           {"build_options", cl_run.options},
-                          {"pixels", c.pixels},
-                          {"pixels_differ", c.differ},
-                          {"pixels_off_by_gt1", c.off_by_gt1},
-                          {"percent_off_by_gt1", c.percent_off_by_gt1()},
-                          {"max_abs_8bit", c.max_abs_8bit},
-                          {"rmse_8bit", c.rmse_8bit},
-                          {"psnr_8bit", std::isinf(c.psnr_8bit) ? nlohmann::json() : nlohmann::json(c.psnr_8bit)},
-                          {"max_abs_float", c.max_abs_float},
-                          {"rmse_float", c.rmse_float},
-                          {"psnr_float", std::isinf(c.psnr_float) ? nlohmann::json() : nlohmann::json(c.psnr_float)},
-                          {"nan_inf_pixels", c.nan_inf},
-                          {"hit_flips", c.hit_flips},
-                          {"shadow_flips", c.shadow_flips},
                           {"reference_ms", ref_run.wall_ms},
                           {"opencl_kernel_ms", cl_run.cl.kernel_ms},
                           {"opencl_build_ms", cl_run.cl.build_ms},
                           {"opencl_build_cached", cl_run.cl.build_cached},
                           {"opencl_total_ms", cl_run.wall_ms}};
+      j.update(comparison_json(c));
       std::printf("%s\n", j.dump(2).c_str());
       return;
     }

@@ -5,6 +5,7 @@
 #include "cli_common.hpp"
 #include "engine.hpp"
 #include "error.hpp"
+#include "tile_scheduler.hpp"
 
 namespace clrt {
 
@@ -25,7 +26,8 @@ void add_render_command(CLI::App& app) {
     if (o->engine == "opencl")
       std::printf("%s: %dx%d depth %d on %s: kernel %.2f ms, build %.1f ms%s\n", out->c_str(), o->width, o->height,
                   depth, run.device.c_str(), run.cl.kernel_ms, run.cl.build_ms, run.cl.build_cached ? " (cached)" : "");
-    else
+    if (run.shares.size() > 1) print_shares(run.shares);
+    if (o->engine != "opencl")
       std::printf("%s: %dx%d depth %d with the reference renderer: %.1f ms\n", out->c_str(), o->width, o->height, depth,
                   run.wall_ms);
   });

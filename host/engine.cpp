@@ -18,17 +18,21 @@ Image run_engine(const std::string& engine, const Scene& scene, const RenderOpti
     r.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     r.device = "host (scalar double)";
   } else {
-    ClRenderer cl(select_device(o.device), o.kernel_config());
+    MultiRenderer cl(select_devices(o.device), o.kernel_config());
     int lx, ly;
     parse_local_size(o.local_size, lx, ly);
     cl.set_local_size(lx, ly);
-    cl.set_max_tile(o.max_tile);
+    cl.set_tile_policy(o.tile_policy());
     cl.prepare(scene, o.width, o.height, depth);
     img = cl.render();
-    r.cl = cl.timings();
-    r.wall_ms = r.cl.total_ms;
-    r.device = cl.device().name;
-    r.options = cl.options();
+    r.cl = cl.renderer(0).timings();
+    r.cl.kernel_ms = cl.kernel_ms();
+    r.cl.build_ms = cl.build_ms();
+    r.cl.upload_ms = cl.upload_ms();
+    r.cl.total_ms = r.wall_ms = cl.wall_ms();
+    r.shares = cl.shares();
+    for (size_t i = 0; i < cl.size(); ++i) r.device += (i ? " + " : "") + cl.renderer(i).device().name;
+    r.options = cl.renderer(0).options();
   }
   if (run) *run = r;
   return img;

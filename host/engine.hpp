@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cl_renderer.hpp"
+#include "multi_renderer.hpp"
 #include "cli_common.hpp"
 #include "image.hpp"
 #include "scene.hpp"
@@ -11,10 +12,11 @@ namespace clrt {
 
 struct EngineRun {
   std::string engine;      // "opencl" or "reference"
-  std::string device;      // device name (opencl)
+  std::string device;      // device name(s) (opencl)
   std::string options;     // build options (opencl)
   double wall_ms = 0;      // reference: render time; opencl: render() wall time
-  RenderTimings cl;        // opencl details
+  RenderTimings cl;        // opencl details (kernel_ms summed over devices)
+  std::vector<DeviceShare> shares;  // opencl: per-device tiles and time
 };
 
 Image run_engine(const std::string& engine, const Scene& scene, const RenderOptions& o, int depth, EngineRun* run);

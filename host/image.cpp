@@ -2,13 +2,11 @@
 #include "image.hpp"
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "error.hpp"
+#include "output_file.hpp"
 
 namespace clrt {
 
@@ -37,17 +35,14 @@ bool is_float_format(const std::string& path) {
   return ext == "exr" || ext == "hdr" || ext == "pfm";
 }
 
+namespace fs = std::filesystem;
+
 // Writes `pixels` (either float or uint8 RGB) through a temp file + rename.
 void write_pixels(const std::string& path, int w, int h, OIIO::TypeDesc type, const void* data) {
   check_output_format(path);
-  namespace fs = std::filesystem;
   fs::path target(path);
-  fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  fs::path tmp = temp_path_for(target);
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw UserError(path + ": cannot write output: directory " + dir.string() + " does not exist");
-  // Same directory (same filesystem) so rename() is atomic; keep the extension
-  // so OpenImageIO picks the same format.
-  fs::path tmp = dir / ("." + target.stem().string() + ".tmp" + std::to_string(::getpid()) + target.extension().string());
   auto out = OIIO::ImageOutput::create(tmp.string());
   if (!out) throw UserError(path + ": cannot write output: " + OIIO::geterror());
   OIIO::ImageSpec spec(w, h, 3, type);
@@ -59,21 +54,21 @@ void write_pixels(const std::string& path, int w, int h, OIIO::TypeDesc type, co
     throw UserError(path + ": cannot write output: " + (err.empty() ? std::string("unknown error") : err));
   }
   out.reset();
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw UserError(path + ": cannot write output: rename failed");
-  }
+  commit_temp(tmp, path);
 }
 
 }  // namespace
 
 void check_output_format(const std::string& path) {
+  if (path.empty()) throw UserError("output path is empty");
+  const std::string ext = extension_of(path);
+  if (ext.empty()) throw UserError(path + ": output has no file extension (use .png, .ppm, .exr, ...)");
   auto out = OIIO::ImageOutput::create(path);
   if (!out) {
     (void)OIIO::geterror();
-    throw UserError(path + ": unknown image format \"." + extension_of(path) + "\" (use .png, .ppm, .exr, ...)");
+    throw UserError(path + ": unknown image format \"." + ext + "\" (use .png, .ppm, .exr, ...)");
   }
+  check_writable(path);
 }
 
 void write_image(const Image& img, const std::string& path) {

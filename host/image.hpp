@@ -25,7 +25,9 @@ struct Image {
 uint8_t to_u8(double v);
 std::vector<uint8_t> to_u8(const Image& img);
 
-// Throws UserError if OpenImageIO has no writer for the file's extension.
+// Checks, before rendering, that OUT can be written: a non-empty path whose
+// extension OpenImageIO can write, in an existing directory that accepts new
+// files, and not itself a directory. Throws UserError naming OUT otherwise.
 void check_output_format(const std::string& path);
 // Writes via a temporary file in the same directory and an atomic rename, so
 // a failed write never leaves a half-written OUT. EXR (and other float

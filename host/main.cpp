@@ -1,10 +1,22 @@
 // main.cpp - the clrt command line: one subcommand per cmd_<name>.cpp.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <string>
 
 #include "cl.hpp"
 #include "cli_common.hpp"
 #include "error.hpp"
+
+namespace {
+
+// Every error is one line on stderr, whatever a library put in its message.
+void report(std::string msg) {
+  for (auto& c : msg)
+    if (c == '\n' || c == '\r') c = ' ';
+  std::cerr << "clrt: error: " << msg << "\n";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"clrt - OpenCL Whitted ray tracer (Computer Graphics from Scratch, ch. 2-5) with a double reference"};
@@ -12,6 +24,10 @@ int main(int argc, char** argv) {
   clrt::add_devices_command(app);
   clrt::add_render_command(app);
   clrt::add_compare_command(app);
+  clrt::add_bench_command(app);
+  clrt::add_sweep_command(app);
+  clrt::add_accuracy_command(app);
+  clrt::add_stability_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -19,19 +35,19 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "clrt: error: " << e.what() << "\n";
+    report(e.what());
     return 2;
   } catch (const clrt::UserError& e) {
-    std::cerr << "clrt: error: " << e.what() << "\n";
+    report(e.what());
     return 2;
   } catch (const clrt::DeviceError& e) {
-    std::cerr << "clrt: error: " << e.what() << "\n";
+    report(e.what());
     return 2;
   } catch (const cl::Error& e) {
-    std::cerr << "clrt: error: " << clrt::describe(e) << "\n";
+    report(clrt::describe(e));
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "clrt: error: " << e.what() << "\n";
+    report(e.what());
     return 1;
   }
   return 0;

@@ -1,16 +1,41 @@
-// program.cpp - program build with the build log surfaced on failure.
+// program.cpp - program build through the binary cache, build log on failure.
 #include "program.hpp"
 
 #include <chrono>
 #include <iostream>
 
 #include "error.hpp"
+#include "program_cache.hpp"
 
 namespace clrt {
+namespace {
 
-cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const std::string& source,
-                          const std::string& options, BuildStats* stats) {
-  auto t0 = std::chrono::steady_clock::now();
+ProgramCacheKey make_key(const DeviceInfo& dev, const std::string& source, const std::string& options) {
+  std::string platform_version;
+  try {
+    platform_version = dev.platform.getInfo<CL_PLATFORM_VERSION>();
+  } catch (const cl::Error&) {
+  }
+  return {source, options, dev.name, dev.driver, dev.platform_name + " " + platform_version};
+}
+
+// A program from a cached binary, or a null program if the driver rejects it.
+cl::Program load_binary(const cl::Context& ctx, const DeviceInfo& dev, const std::vector<unsigned char>& bin,
+                        const std::string& options) {
+  try {
+    cl::Program::Binaries bins{bin};
+    std::vector<cl_int> status;
+    cl::Program p(ctx, {dev.device}, bins, &status);
+    if (status.empty() || status[0] != CL_SUCCESS) return cl::Program();
+    p.build({dev.device}, options.c_str());
+    return p;
+  } catch (const cl::Error&) {
+    return cl::Program();
+  }
+}
+
+cl::Program build_from_source(const cl::Context& ctx, const DeviceInfo& dev, const std::string& source,
+                              const std::string& options) {
   cl::Program program(ctx, source);
   try {
     program.build({dev.device}, options.c_str());
@@ -24,9 +49,45 @@ cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const s
               << log << "\n---- end of build log ----\n";
     throw DeviceError("kernel build failed on " + dev.name + ": " + cl_error_name(e.err()) + " (build log above)");
   }
+  return program;
+}
+
+}  // namespace
+
+cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const std::string& source,
+                          const std::string& options, BuildStats* stats, BuildFlags flags) {
+  auto t0 = std::chrono::steady_clock::now();
+  ProgramCacheKey key = make_key(dev, source, options);
+  cl::Program program;
+  bool hit = false;
+  if (flags.use_cache) {
+    if (auto bin = cache_load(key)) {
+      program = load_binary(ctx, dev, *bin, options);
+      hit = program() != nullptr;
+    }
+  }
+  if (!hit) {
+    program = build_from_source(ctx, dev, source, options);
+    if (flags.use_cache) {
+      try {
+        auto bins = program.getInfo<CL_PROGRAM_BINARIES>();
+        if (bins.size() == 1) cache_store(key, bins[0]);
+      } catch (const cl::Error&) {
+      }
+    }
+  }
+  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (flags.verbose) {
+    std::cerr << "clrt: build options (" << dev.name << "): " << options << "\n"
+              << "clrt: program "
+              << (hit               ? "loaded from cache"
+                  : flags.use_cache ? "built, stored in cache"
+                                    : "built (cache off)")
+              << " in " << ms << " ms" << (flags.use_cache ? " [" + cache_entry_path(key) + "]" : "") << "\n";
+  }
   if (stats) {
-    stats->ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    stats->cached = false;
+    stats->ms = ms;
+    stats->cached = hit;
   }
   return program;
 }

@@ -2,7 +2,10 @@
 // numbers and out-of-range values are all rejected with a one-line message.
 #include "scene.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
@@ -30,7 +33,7 @@ class Parser {
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       bool known = false;
       for (const char* k : keys) known = known || it.key() == k;
-      if (!known) fail(where, "unknown key \"" + it.key() + "\"");
+      if (!known) fail(where, "unknown key " + quoted(it.key()));
     }
   }
 
@@ -60,6 +63,11 @@ class Parser {
   }
 
   static std::string type_of(const json& j) { return j.type_name(); }
+  // A string from the file, quoted and escaped as JSON, so that a key such as
+  // "a\nb" cannot break the one-line message.
+  static std::string quoted(const std::string& s) {
+    return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
+  }
   static std::string fmt(double v) {
     std::ostringstream os;
     os << v;
@@ -74,10 +82,12 @@ class Parser {
     if (root.contains("recursion_depth")) {
       const json& d = root["recursion_depth"];
       if (!d.is_number_integer()) fail("recursion_depth", "expected an integer, got " + type_of(d));
-      long long v = d.get<long long>();
-      if (v < 0 || v > CLRT_MAX_DEPTH)
-        fail("recursion_depth", "must be in [0, " + std::to_string(CLRT_MAX_DEPTH) + "] (got " + std::to_string(v) + ")");
-      s.recursion_depth = static_cast<int>(v);
+      // Unsigned first: get<long long>() of a value above LLONG_MAX wraps.
+      bool in_range = d.is_number_unsigned() ? d.get<unsigned long long>() <= CLRT_MAX_DEPTH
+                                             : d.get<long long>() >= 0 && d.get<long long>() <= CLRT_MAX_DEPTH;
+      if (!in_range)
+        fail("recursion_depth", "must be in [0, " + std::to_string(CLRT_MAX_DEPTH) + "] (got " + d.dump() + ")");
+      s.recursion_depth = static_cast<int>(d.get<long long>());
     }
     if (root.contains("epsilon")) s.epsilon = number_in(root["epsilon"], "epsilon", 0, 1e30);
     if (root.contains("spheres")) {
@@ -159,7 +169,7 @@ class Parser {
       if (l.vec.x == 0 && l.vec.y == 0 && l.vec.z == 0) fail(w + ".direction", "must not be the zero vector");
       if (!std::isfinite(dot(l.vec, l.vec))) fail(w + ".direction", "is too long (its squared length overflows)");
     } else {
-      fail(w + ".type", "unknown light type \"" + type + "\" (expected ambient, point or directional)");
+      fail(w + ".type", "unknown light type " + quoted(type) + " (expected ambient, point or directional)");
     }
     if (!j.contains("intensity")) fail(w, "missing \"intensity\"");
     l.intensity = number_in(j["intensity"], w + ".intensity", 0, 1e30);
@@ -181,18 +191,29 @@ Scene parse_scene(const std::string& text, const std::string& name) {
     // nlohmann prefixes "[json.exception.parse_error.101] "; keep the rest.
     auto pos = msg.find("] ");
     if (pos != std::string::npos) msg = msg.substr(pos + 2);
-    throw UserError(name + ": malformed JSON: " + msg);
+    // A literal such as 1e400 parses but overflows a double (out_of_range.406).
+    bool overflow = dynamic_cast<const json::out_of_range*>(&e) != nullptr;
+    throw UserError(name + (overflow ? ": number out of range: " : ": malformed JSON: ") + msg);
   }
   return Parser(name).parse(root);
 }
 
 Scene load_scene(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw UserError(path + ": cannot open scene file: is a directory");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path + ": cannot open scene file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  if (!in) throw UserError(path + ": cannot open scene file: " + std::strerror(errno));
+  // Read in chunks and stop past kMaxSceneBytes, so that /dev/zero or a huge
+  // file cannot exhaust memory.
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<size_t>(in.gcount()));
+    if (text.size() > kMaxSceneBytes)
+      throw UserError(path + ": scene file is larger than " + std::to_string(kMaxSceneBytes >> 20) + " MiB");
+  }
   if (in.bad()) throw UserError(path + ": cannot read scene file");
-  return parse_scene(ss.str(), path);
+  return parse_scene(text, path);
 }
 
 std::string scene_to_json(const Scene& s) {

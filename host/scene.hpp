@@ -42,7 +42,9 @@ struct Scene {
 
 // Parses and validates a scene; throws UserError("<name>: <path>: <problem>").
 Scene parse_scene(const std::string& json_text, const std::string& name);
-// Reads a file and parses it; a missing/unreadable file is a UserError.
+// Largest scene file load_scene() accepts.
+constexpr size_t kMaxSceneBytes = size_t(64) << 20;
+// Reads a file and parses it; a missing/unreadable/oversized file is a UserError.
 Scene load_scene(const std::string& path);
 // Serializes a scene back to JSON text (used by generated test suites).
 std::string scene_to_json(const Scene& s);

@@ -1,3 +1,18 @@
-// main.cpp - Catch2 (v2) entry point.
-#define CATCH_CONFIG_MAIN
+// main.cpp - Catch2 (v2) entry point. The program binary cache is pointed at
+// a fresh temporary directory for the whole test process (unless the caller
+// set CLRT_CACHE_DIR), so tests never read or fill the user's cache.
+#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+#include <cstdlib>
+
+#include "cli_run.hpp"
+
+int main(int argc, char** argv) {
+  const char* set = std::getenv("CLRT_CACHE_DIR");
+  std::unique_ptr<clrt_test::TempDir> cache;
+  if (!set || !*set) {
+    cache = std::make_unique<clrt_test::TempDir>();
+    ::setenv("CLRT_CACHE_DIR", cache->path().c_str(), 1);
+  }
+  return Catch::Session().run(argc, argv);
+}

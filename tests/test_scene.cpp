@@ -99,6 +99,11 @@ TEST_CASE("invalid scenes are rejected with a message naming the problem", "[sce
   // JSON has no NaN/Inf literals; an overflowing literal must not become inf.
   CHECK_THAT(error_of(R"({"epsilon": 1e400})"), Contains("bad.json"));
   CHECK_THAT(error_of(R"({"epsilon": NaN})"), Contains("malformed JSON"));
+  // Strings from the file are echoed escaped: the message stays one line
+  // (found by tests/fuzz/fuzz_scene.cpp).
+  CHECK(error_of(R"({"a\nb": 1})") == R"(bad.json: unknown key "a\nb")");
+  CHECK(error_of(R"({"lights": [{"type": "x\ty", "intensity": 1}]})") ==
+        R"(bad.json: lights[0].type: unknown light type "x\ty" (expected ambient, point or directional))");
 }
 
 TEST_CASE("a missing scene file is a clear error", "[scene]") {
@@ -106,6 +111,6 @@ TEST_CASE("a missing scene file is a clear error", "[scene]") {
     load_scene("/nonexistent/scene.json");
     FAIL("no error");
   } catch (const UserError& e) {
-    CHECK(std::string(e.what()) == "/nonexistent/scene.json: cannot open scene file");
+    CHECK(std::string(e.what()) == "/nonexistent/scene.json: cannot open scene file: No such file or directory");
   }
 }

@@ -1,6 +1,9 @@
 // test_util.hpp - shared helpers for the test suite.
 #pragma once
+#include <algorithm>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "scene.hpp"
 
@@ -8,5 +11,14 @@ namespace clrt_test {
 
 inline std::string source_path(const std::string& rel) { return std::string(CLRT_SOURCE_DIR) + "/" + rel; }
 inline clrt::Scene load(const std::string& rel) { return clrt::load_scene(source_path(rel)); }
+
+// Every scenes/*.json of the source tree, sorted.
+inline std::vector<std::string> shipped_scenes() {
+  std::vector<std::string> out;
+  for (auto& e : std::filesystem::directory_iterator(source_path("scenes")))
+    if (e.path().extension() == ".json") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
 
 }  // namespace clrt_test

@@ -1,0 +1,17 @@
+// omp_tracer.hpp - a straightforward OpenMP C++ float implementation of the
+// book's ray tracer (Computer Graphics from Scratch, ch. 2-5), built with
+// -O3 -march=native -fopenmp. A benchmark comparison for `clrt bench` only:
+// it is never used as the oracle (that is host/reference.cpp, in double).
+#pragma once
+#include <vector>
+
+#include "scene.hpp"
+
+namespace clrt_bench {
+
+// Renders width x height at `depth` into rgb (width*height*3 floats, 0..255
+// unclamped, row 0 at the top) with all OpenMP threads. Returns the number
+// of threads used.
+int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<float>& rgb);
+
+}  // namespace clrt_bench

@@ -1,0 +1,101 @@
+// test_multidevice.cpp - one frame across several devices, and tiling on one
+// device, must give exactly the single-launch image.
+#include <OpenImageIO/imageio.h>
+
+#include <catch2/catch.hpp>
+
+#include "cl_renderer.hpp"
+#include "cli_run.hpp"
+#include "multi_renderer.hpp"
+#include "test_util.hpp"
+
+using namespace clrt;
+
+namespace {
+
+std::vector<float> read_float_pixels(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  REQUIRE(in);
+  const auto& spec = in->spec();
+  std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+  REQUIRE(in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, px.data()));
+  in->close();
+  return px;
+}
+
+size_t count_lines_with(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t p = text.find(needle); p != std::string::npos; p = text.find(needle, p + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("two PoCL devices render the same bytes as one", "[opencl][multidevice]") {
+  // POCL_DEVICES is read when the OpenCL platform initializes, so each
+  // configuration runs in its own clrt process. EXR keeps the float colour,
+  // so equality here is equality of the kernel's output, bit for bit.
+  clrt_test::TempDir dir;
+  const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json");
+  auto single = clrt_test::run_clrt({"render", scene, "--width", "320", "--height", "240", "-o", dir / "single.exr"});
+  REQUIRE(single.status == 0);
+  const auto want = read_float_pixels(dir / "single.exr");
+  for (const char* devices : {"pthread pthread", "pthread basic"}) {
+    for (const char* band : {"0", "7"}) {  // adaptive bands, and many small fixed ones
+      INFO("POCL_DEVICES=" << devices << " --band-rows " << band);
+      std::string out = dir / (std::string("multi-") + band + ".exr");
+      auto r = clrt_test::run_clrt({"render", scene, "--width", "320", "--height", "240", "--device", "all",
+                                    "--band-rows", band, "-o", out},
+                                   std::string("POCL_DEVICES=") + clrt_test::shell_quote(devices));
+      INFO(r.out << r.err);
+      REQUIRE(r.status == 0);
+      CHECK(count_lines_with(r.out, "  device ") == 2);  // one share line per device
+      CHECK(read_float_pixels(out) == want);
+    }
+  }
+}
+
+TEST_CASE("two contexts on one device share a frame exactly", "[opencl][multidevice]") {
+  DeviceInfo dev = select_device("");
+  Scene s = clrt_test::load("scenes/cgfs-camera.json");
+  ClRenderer one(dev, KernelConfig{});
+  one.prepare(s, 200, 150, 3);
+  Image want = one.render();
+  MultiRenderer multi({dev, dev}, KernelConfig{});
+  multi.set_tile_policy(TilePolicy{0, 5});
+  multi.prepare(s, 200, 150, 3);
+  Image got = multi.render();
+  CHECK(got.rgb == want.rgb);
+  CHECK(got.hit == want.hit);
+  CHECK(got.shadowed == want.shadowed);
+  REQUIRE(multi.shares().size() == 2);
+  CHECK(multi.shares()[0].rows + multi.shares()[1].rows == 150);
+  CHECK(multi.shares()[0].tiles + multi.shares()[1].tiles == 30);  // 150 rows / 5
+}
+
+TEST_CASE("a launch-time limit splits one device's frame into bands", "[opencl]") {
+  DeviceInfo dev = select_device("");
+  Scene s = clrt_test::load("scenes/cgfs-demo.json");
+  ClRenderer whole(dev, KernelConfig{});
+  whole.set_tile_policy(TilePolicy{0, 0});  // no limit on any device type
+  whole.prepare(s, 160, 120, 2);
+  Image want = whole.render();
+  CHECK(whole.timings().launches == 1);
+  ClRenderer limited(dev, KernelConfig{});
+  // A limit far below any real launch: after the 16-row calibration band
+  // every band shrinks to one row.
+  limited.set_tile_policy(TilePolicy{1e-6, 0});
+  limited.prepare(s, 160, 120, 2);
+  Image got = limited.render();
+  CHECK(limited.timings().launches == 1 + (120 - 16));
+  CHECK(got.rgb == want.rgb);
+  CHECK(got.hit == want.hit);
+}
+
+TEST_CASE("device default launch limits", "[opencl]") {
+  CHECK(launch_limit_ms(TilePolicy{}, "CPU") == 0);
+  CHECK(launch_limit_ms(TilePolicy{}, "GPU") == 500);
+  CHECK(launch_limit_ms(TilePolicy{}, "ACCELERATOR") == 500);
+  CHECK(launch_limit_ms(TilePolicy{120, 0}, "GPU") == 120);
+  CHECK(launch_limit_ms(TilePolicy{0, 0}, "GPU") == 0);
+}

@@ -1,0 +1,234 @@
+// test_specialize.cpp - the scene-specialized (float8-lane) kernel against the
+// generic (scalar, per-pixel) kernel, the program cache, and the kernel's ray
+// counters against counts derived by hand.
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cl_renderer.hpp"
+#include "cli_run.hpp"
+#include "device.hpp"
+#include "program_cache.hpp"
+#include "test_util.hpp"
+
+using namespace clrt;
+
+namespace {
+
+Image render_with(const DeviceInfo& dev, KernelConfig cfg, const Scene& s, int w, int h, int depth,
+                  RayCounts* counts = nullptr, RenderTimings* t = nullptr) {
+  ClRenderer r(dev, cfg);
+  r.prepare(s, w, h, depth);
+  Image img = r.render();
+  if (counts) *counts = r.ray_counts();
+  if (t) *t = r.timings();
+  return img;
+}
+
+// Byte-identical: the same float (exactly representable in the double
+// Image), the same hit sphere and the same shadow bits in every pixel.
+void require_identical(const Image& a, const Image& b) {
+  REQUIRE(a.width == b.width);
+  REQUIRE(a.height == b.height);
+  size_t rgb_diff = 0, hit_diff = 0, shadow_diff = 0;
+  for (size_t i = 0; i < a.rgb.size(); ++i) rgb_diff += a.rgb[i] != b.rgb[i];
+  for (size_t i = 0; i < a.pixels(); ++i) {
+    hit_diff += a.hit[i] != b.hit[i];
+    shadow_diff += a.shadowed[i] != b.shadowed[i];
+  }
+  CHECK(rgb_diff == 0);
+  CHECK(hit_diff == 0);
+  CHECK(shadow_diff == 0);
+}
+
+// 157 x 118: the width is not a multiple of the 8 (or 16) pixels a
+// specialized work-item shades, so partial packets are exercised.
+constexpr int kW = 157, kH = 118;
+
+}  // namespace
+
+TEST_CASE("specialized and generic kernels give identical images on every scene", "[opencl][specialize]") {
+  DeviceInfo dev = select_device("");
+  KernelConfig generic;
+  generic.specialize = false;
+  KernelConfig special;  // default: specialized, 8 lanes
+  for (const auto& path : clrt_test::shipped_scenes()) {
+    Scene s = load_scene(path);
+    for (int depth : {0, 1, 3}) {
+      INFO(path << " depth " << depth);
+      require_identical(render_with(dev, special, s, kW, kH, depth), render_with(dev, generic, s, kW, kH, depth));
+    }
+  }
+}
+
+TEST_CASE("every precision and lane count gives the generic kernel's image", "[opencl][specialize]") {
+  DeviceInfo dev = select_device("");
+  Scene s = clrt_test::load("scenes/cgfs-demo.json");
+  for (Precision p : {Precision::Naive, Precision::Stable, Precision::Robust, Precision::Fp64}) {
+    if (p == Precision::Fp64 && !dev.fp64) continue;
+    KernelConfig generic;
+    generic.precision = p;
+    generic.specialize = false;
+    Image ref = render_with(dev, generic, s, kW, kH, 2);
+    std::vector<int> lanes = p == Precision::Fp64 ? std::vector<int>{1} : std::vector<int>{1, 4, 8, 16};
+    for (int l : lanes) {
+      INFO(precision_name(p) << " lanes " << l);
+      KernelConfig special = generic;
+      special.specialize = true;
+      special.lanes = l;
+      require_identical(render_with(dev, special, s, kW, kH, 2), ref);
+    }
+  }
+}
+
+TEST_CASE("program cache: a second build is a hit and renders the same image", "[opencl][cache]") {
+  clrt_test::TempDir dir;
+  std::string old = std::getenv("CLRT_CACHE_DIR") ? std::getenv("CLRT_CACHE_DIR") : "";
+  ::setenv("CLRT_CACHE_DIR", dir.path().c_str(), 1);
+  DeviceInfo dev = select_device("");
+  Scene s = clrt_test::load("scenes/cgfs-demo.json");
+  KernelConfig cfg;
+  RenderTimings t1, t2, t3, t4;
+  Image first = render_with(dev, cfg, s, 64, 48, 2, nullptr, &t1);
+  CHECK_FALSE(t1.build_cached);
+  REQUIRE(dir.entries().size() == 1);  // one entry, no temporary left behind
+  Image second = render_with(dev, cfg, s, 64, 48, 2, nullptr, &t2);
+  CHECK(t2.build_cached);
+  require_identical(first, second);
+
+  // A corrupted entry (flipped byte in the binary) is detected by its
+  // checksum and rebuilt from source; then it is valid again.
+  std::string entry = (dir.path() / dir.entries()[0]).string();
+  std::string data = clrt_test::slurp(entry);
+  data[data.size() - 20] ^= 0x5a;
+  std::ofstream(entry, std::ios::binary | std::ios::trunc) << data;
+  Image third = render_with(dev, cfg, s, 64, 48, 2, nullptr, &t3);
+  CHECK_FALSE(t3.build_cached);
+  require_identical(first, third);
+  // A truncated entry as well.
+  std::ofstream(entry, std::ios::binary | std::ios::trunc) << data.substr(0, 40);
+  Image fourth = render_with(dev, cfg, s, 64, 48, 2, nullptr, &t4);
+  CHECK_FALSE(t4.build_cached);
+  require_identical(first, fourth);
+
+  // --no-cache: neither reads nor writes.
+  KernelConfig off = cfg;
+  off.use_cache = false;
+  RenderTimings t5;
+  std::filesystem::remove(entry);
+  render_with(dev, off, s, 64, 48, 2, nullptr, &t5);
+  CHECK_FALSE(t5.build_cached);
+  CHECK(dir.entries().empty());
+  ::setenv("CLRT_CACHE_DIR", old.c_str(), 1);
+}
+
+TEST_CASE("program cache key covers source, options and device", "[cache]") {
+  ProgramCacheKey a{"src", "-DX=1", "dev", "drv", "plat"};
+  ProgramCacheKey b = a, c = a, d = a;
+  b.options = "-DX=2";
+  c.source = "src ";
+  d.driver = "drv2";
+  CHECK(a.hash() != b.hash());
+  CHECK(a.hash() != c.hash());
+  CHECK(a.hash() != d.hash());
+  // Length-prefixed fields: moving text between fields changes the key.
+  ProgramCacheKey e{"srcx", "", "dev", "drv", "plat"}, f{"src", "x", "dev", "drv", "plat"};
+  CHECK(e.text() != f.text());
+}
+
+TEST_CASE("ray counters match counts derived by hand", "[opencl][rays]") {
+  DeviceInfo dev = select_device("");
+  const int W = 37, H = 11;  // 37: not a multiple of the lane count
+  const uint64_t px = uint64_t(W) * H;
+  auto counts = [&](const Scene& s, int depth, bool specialize) {
+    KernelConfig cfg;
+    cfg.count_rays = true;
+    cfg.specialize = specialize;
+    RayCounts c;
+    render_with(dev, cfg, s, W, H, depth, &c);
+    return c;
+  };
+  // One sphere behind the camera: no hit, so no shadow or reflection ray.
+  Scene miss = parse_scene(R"({"spheres": [{"center": [0, 0, -10], "radius": 1, "color": [9, 9, 9], "reflective": 0.5}],
+                               "lights": [{"type": "point", "intensity": 1, "position": [0, 5, 0]}]})",
+                           "miss");
+  // The camera sits at the centre of a sphere of radius 100, so every primary
+  // ray hits it (t = 100/|D| > 1) and every reflection leaves the inner
+  // surface towards the inside and hits it again: per pixel depth + 1 hits,
+  // depth reflection rays, and one shadow ray per hit for each of the 2
+  // non-ambient lights. A second sphere far away is never hit but still
+  // tested: 2 tests per ray.
+  Scene inside = parse_scene(
+      R"({"spheres": [{"center": [0, 0, 0], "radius": 100, "color": [9, 9, 9], "reflective": 0.5, "specular": 10},
+                      {"center": [0, 0, 1000], "radius": 1, "color": [9, 9, 9]}],
+          "lights": [{"type": "ambient", "intensity": 0.2},
+                     {"type": "point", "intensity": 0.5, "position": [0, 0, 0]},
+                     {"type": "directional", "intensity": 0.3, "direction": [1, 1, 1]}]})",
+      "inside");
+  const int depth = 3;
+  for (bool specialize : {true, false}) {
+    INFO("specialized " << specialize);
+    RayCounts m = counts(miss, 3, specialize);
+    CHECK(m.primary == px);
+    CHECK(m.shadow == 0);
+    CHECK(m.reflection == 0);
+    CHECK(m.sphere_tests == px * 1);
+    RayCounts c = counts(inside, depth, specialize);
+    CHECK(c.primary == px);
+    CHECK(c.reflection == px * depth);
+    CHECK(c.shadow == px * (depth + 1) * 2);
+    CHECK(c.sphere_tests == 2 * (c.primary + c.reflection + c.shadow));
+  }
+}
+
+TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench]") {
+  auto r = clrt_test::run_clrt({"bench", clrt_test::source_path("scenes/cgfs-demo.json"), "--width", "40", "--height",
+                                "30", "--depth", "1", "--repeat", "2", "--json"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  auto j = nlohmann::json::parse(r.out);
+  for (const char* k :
+       {"kernel_ms_median", "kernel_ms_min", "kernel_ms_max", "rays_total", "rays_primary", "rays_shadow",
+        "rays_reflection", "mrays_per_s", "reference_ms", "omp_ms_median", "opencl_speedup_vs_omp", "build_cold_ms",
+        "build_warm_ms", "upload_ms", "download_ms", "end_to_end_ms", "gflops", "peak_gflops", "ns_per_sphere_test"})
+    CHECK(j.contains(k));
+  CHECK(j["kernel_ms"].size() == 2);
+  CHECK(j["build_warm_cached"] == true);
+  // Every pixel shoots one primary ray; the totals add up.
+  CHECK(j["rays_primary"] == 40 * 30);
+  CHECK(j["rays_total"].get<uint64_t>() ==
+        j["rays_primary"].get<uint64_t>() + j["rays_shadow"].get<uint64_t>() + j["rays_reflection"].get<uint64_t>());
+}
+
+TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep]") {
+  clrt_test::TempDir dir;
+  auto r =
+      clrt_test::run_clrt({"sweep", clrt_test::source_path("scenes/cgfs-demo.json"), "--depths", "0:2", "--width", "32",
+                           "--height", "24", "--repeat", "1", "--csv", dir / "s.csv", "--plot", dir / "s.png"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find('\r') == std::string::npos);  // no progress bar when stderr is not a terminal
+  std::istringstream csv(clrt_test::slurp(dir / "s.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  REQUIRE(rows.size() == 3);
+  CHECK(header.rfind("device,depth,kernel_ms_median", 0) == 0);
+  // Depth 0 traces no reflection ray: the rays_reflection column is 0.
+  auto column = [&](const std::string& row, const std::string& name) {
+    std::istringstream h(header), v(row);
+    std::string hn, vv;
+    while (std::getline(h, hn, ',') && std::getline(v, vv, ','))
+      if (hn == name) return vv;
+    return std::string("?");
+  };
+  CHECK(column(rows[0], "depth") == "0");
+  CHECK(column(rows[0], "rays_reflection") == "0");
+  CHECK(column(rows[0], "rays_primary") == "768");
+  CHECK(column(rows[2], "depth") == "2");
+  CHECK(std::filesystem::file_size(dir / "s.png") > 0);
+  CHECK(std::filesystem::file_size(dir / "s-rays.png") > 0);
+}
