@@ -20,7 +20,7 @@ static_assert(sizeof(clrt_light) == 32, "clrt_light size");
 static_assert(offsetof(clrt_light, intensity) == 4, "clrt_light.intensity");
 static_assert(offsetof(clrt_light, vec) == 8, "clrt_light.vec");
 static_assert(offsetof(clrt_light, vec_lo) == 20, "clrt_light.vec_lo");
-static_assert(sizeof(clrt_params) == 152, "clrt_params size");
+static_assert(sizeof(clrt_params) == 168, "clrt_params size");
 static_assert(offsetof(clrt_params, viewport) == 24, "clrt_params.viewport");
 static_assert(offsetof(clrt_params, proj_d) == 32, "clrt_params.proj_d");
 static_assert(offsetof(clrt_params, epsilon) == 36, "clrt_params.epsilon");
@@ -29,6 +29,9 @@ static_assert(offsetof(clrt_params, origin_lo) == 52, "clrt_params.origin_lo");
 static_assert(offsetof(clrt_params, rotation) == 64, "clrt_params.rotation");
 static_assert(offsetof(clrt_params, rotation_lo) == 100, "clrt_params.rotation_lo");
 static_assert(offsetof(clrt_params, background) == 136, "clrt_params.background");
+static_assert(offsetof(clrt_params, proj_d_lo) == 148, "clrt_params.proj_d_lo");
+static_assert(offsetof(clrt_params, viewport_lo) == 152, "clrt_params.viewport_lo");
+static_assert(offsetof(clrt_params, epsilon_lo) == 160, "clrt_params.epsilon_lo");
 static_assert(sizeof(clrt_ray_counts) == 16, "clrt_ray_counts size");
 
 namespace {
@@ -57,10 +60,10 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
   p.depth = depth;
   p.n_spheres = static_cast<clrt_i32>(scene.spheres.size());
   p.n_lights = static_cast<clrt_i32>(scene.lights.size());
-  p.viewport[0] = static_cast<float>(scene.camera.viewport_w);
-  p.viewport[1] = static_cast<float>(scene.camera.viewport_h);
-  p.proj_d = static_cast<float>(scene.camera.projection_plane_d);
-  p.epsilon = static_cast<float>(scene.epsilon);
+  split(scene.camera.viewport_w, p.viewport[0], p.viewport_lo[0]);
+  split(scene.camera.viewport_h, p.viewport[1], p.viewport_lo[1]);
+  split(scene.camera.projection_plane_d, p.proj_d, p.proj_d_lo);
+  split(scene.epsilon, p.epsilon, p.epsilon_lo);
   split3(scene.camera.position - shift, p.origin, p.origin_lo);
   for (int k = 0; k < 9; ++k) split(scene.camera.rotation[k], p.rotation[k], p.rotation_lo[k]);
   p.background[0] = static_cast<float>(scene.background.x);

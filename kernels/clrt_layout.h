@@ -60,8 +60,11 @@ typedef struct clrt_params {
   clrt_f32 rotation[9]; /* row-major 3x3 */
   clrt_f32 rotation_lo[9];
   clrt_f32 background[3];
+  clrt_f32 proj_d_lo; /* lo parts of the camera scalars (fp64 builds) */
+  clrt_f32 viewport_lo[2];
+  clrt_f32 epsilon_lo;
   clrt_f32 pad1;
-} clrt_params; /* 152 bytes */
+} clrt_params; /* 168 bytes */
 
 /* Per-pixel ray counters written when CLRT_COUNT_RAYS is defined. */
 typedef struct clrt_ray_counts {

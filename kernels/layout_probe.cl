@@ -27,6 +27,9 @@ __kernel void layout_probe(__global int* out) {
   out[i++] = OFF(clrt_params, rotation);
   out[i++] = OFF(clrt_params, rotation_lo);
   out[i++] = OFF(clrt_params, background);
+  out[i++] = OFF(clrt_params, proj_d_lo);
+  out[i++] = OFF(clrt_params, viewport_lo);
+  out[i++] = OFF(clrt_params, epsilon_lo);
   out[i++] = (int)sizeof(clrt_ray_counts);
   out[i++] = OFF(clrt_ray_counts, sphere_tests);
 }

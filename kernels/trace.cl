@@ -374,13 +374,13 @@ __kernel void render(__global const clrt_params* P, __global const clrt_sphere* 
 #endif
 
   /* CanvasToViewport, then the camera rotation. */
-  const lreal dx = TO_LREAL(x) * (real)P->viewport[0] / (real)W;
-  const real dy = (real)y * (real)P->viewport[1] / (real)H, dz = (real)P->proj_d;
+  const lreal dx = TO_LREAL(x) * LD(P->viewport[0], P->viewport_lo[0]) / (real)W;
+  const real dy = (real)y * LD(P->viewport[1], P->viewport_lo[1]) / (real)H, dz = LD(P->proj_d, P->proj_d_lo);
   real m[9];
   for (int k = 0; k < 9; ++k) m[k] = LD(P->rotation[k], P->rotation_lo[k]);
   vec3 D = v3(m[0] * dx + m[1] * dy + m[2] * dz, m[3] * dx + m[4] * dy + m[5] * dz, m[6] * dx + m[7] * dy + m[8] * dz);
   vec3 O = LD3(P->origin, P->origin_lo);
-  const real eps = (real)P->epsilon;
+  const real eps = LD(P->epsilon, P->epsilon_lo);
   const vec3 background = v3(P->background[0], P->background[1], P->background[2]);
 
   /* Explicit stack: one frame (local colour, reflectivity) per bounce that

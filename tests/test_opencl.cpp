@@ -35,7 +35,8 @@ TEST_CASE("kernel and host agree on the shared layouts", "[opencl][layout]") {
       int(offsetof(clrt_params, n_lights)), int(offsetof(clrt_params, viewport)), int(offsetof(clrt_params, proj_d)),
       int(offsetof(clrt_params, epsilon)), int(offsetof(clrt_params, origin)),    int(offsetof(clrt_params, origin_lo)),
       int(offsetof(clrt_params, rotation)), int(offsetof(clrt_params, rotation_lo)),
-      int(offsetof(clrt_params, background)), int(sizeof(clrt_ray_counts)),
+      int(offsetof(clrt_params, background)), int(offsetof(clrt_params, proj_d_lo)),
+      int(offsetof(clrt_params, viewport_lo)), int(offsetof(clrt_params, epsilon_lo)), int(sizeof(clrt_ray_counts)),
       int(offsetof(clrt_ray_counts, sphere_tests))};
   for (size_t i = 0; i < host.size(); ++i) {
     INFO("layout entry " << i);
