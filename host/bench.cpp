@@ -9,13 +9,10 @@
 
 #include "omp_tracer.hpp"
 #include "reference.hpp"
+#include "timer.hpp"
 
 namespace clrt {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 MultiRenderer make_renderer(const std::vector<DeviceInfo>& devs, const KernelConfig& cfg, const BenchSettings& s) {
   MultiRenderer r(devs, cfg);

@@ -7,13 +7,10 @@
 
 #include "error.hpp"
 #include "kernel_source.hpp"
+#include "timer.hpp"
 
 namespace clrt {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 double event_ms(const cl::Event& ev) {
   cl_ulong start = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "reference.hpp"
+#include "timer.hpp"
 
 namespace clrt {
 
@@ -15,7 +16,7 @@ Image run_engine(const std::string& engine, const Scene& scene, const RenderOpti
   if (engine == "reference") {
     auto t0 = std::chrono::steady_clock::now();
     img = render_reference(scene, o.width, o.height, depth);
-    r.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    r.wall_ms = ms_since(t0);
     r.device = "host (scalar double)";
   } else {
     MultiRenderer cl(select_devices(o.device), o.kernel_config());

@@ -1,5 +1,6 @@
 // multi_renderer.cpp - several devices on one frame.
 #include "multi_renderer.hpp"
+#include "timer.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -46,7 +47,7 @@ Image MultiRenderer::render() {
   // All renderers were prepared with the same scene and size.
   Image img(renderers_.front()->width(), renderers_.front()->height());
   shares_ = render_bands(workers, img, policy_);
-  wall_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  wall_ms_ = ms_since(t0);
   for (size_t i = 0; i < renderers_.size(); ++i) renderers_[i]->end_frame(shares_[i], wall_ms_);
   return img;
 }

@@ -6,6 +6,7 @@
 
 #include "error.hpp"
 #include "program_cache.hpp"
+#include "timer.hpp"
 
 namespace clrt {
 namespace {
@@ -76,7 +77,7 @@ cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const s
       }
     }
   }
-  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  double ms = ms_since(t0);
   if (flags.verbose) {
     std::cerr << "clrt: build options (" << dev.name << "): " << options << "\n"
               << "clrt: program "

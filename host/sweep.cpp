@@ -10,6 +10,7 @@
 #include "error.hpp"
 #include "plot.hpp"
 #include "reference.hpp"
+#include "timer.hpp"
 
 namespace clrt {
 namespace {
@@ -56,7 +57,7 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<DeviceInfo
     // The reference once per depth, shared by the devices.
     auto t0 = std::chrono::steady_clock::now();
     Image ref = render_reference(scene, s.bench.width, s.bench.height, d);
-    double ref_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    double ref_ms = ms_since(t0);
     for (size_t k = 0; k < devices.size(); ++k) {
       if (s.progress) progress_bar(done, total, "depth " + std::to_string(d) + " on " + devices[k].name);
       BenchSettings b = s.bench;

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "cl_renderer.hpp"
+#include "timer.hpp"
 
 namespace clrt {
 
@@ -65,7 +66,7 @@ void run_worker(ClRenderer& r, BandQueue& queue, Image& img, const TilePolicy& p
   while (queue.take(rows, policy.band_rows == 0, y0, n)) {
     auto t0 = std::chrono::steady_clock::now();
     double ms = r.render_tile(0, y0, W, n, img);
-    share.busy_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    share.busy_ms += ms_since(t0);
     share.kernel_ms += ms;
     share.max_launch_ms = std::max(share.max_launch_ms, ms);
     share.tiles += 1;
