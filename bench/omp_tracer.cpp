@@ -2,9 +2,20 @@
 // iteration, rows shared among OpenMP threads. Deliberately plain: the
 // book's listings, with the same any-hit shortcut for shadow rays as the
 // OpenCL kernel so that both do the same work.
+//
+// Same floating-point environment as the kernel, which is built with
+// -cl-denorms-are-zero and has no errno: each thread runs with FTZ/DAZ set
+// (x86 MXCSR), and this file is built with -fno-math-errno (CMakeLists.txt).
+// Without them the book's specular term pow(r.v, 500) underflows on most
+// pixels and glibc's powf takes its underflow path through denormal
+// arithmetic: measured 11-14% of this tracer's frame time
+// (docs/performance.md), which had inflated clrt's speedup over it.
 #include "omp_tracer.hpp"
 
 #include <omp.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
 
 #include <cmath>
 #include <limits>
@@ -140,6 +151,10 @@ int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::
   int threads = 1;
 #pragma omp parallel
   {
+#if defined(__SSE__)
+    const unsigned saved_csr = _mm_getcsr();
+    _mm_setcsr(saved_csr | 0x8040);  // FTZ (bit 15) | DAZ (bit 6)
+#endif
 #pragma omp single
     threads = omp_get_num_threads();
 #pragma omp for schedule(dynamic, 4)
@@ -158,6 +173,9 @@ int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::
         p[2] = col_v.z;
       }
     }
+#if defined(__SSE__)
+    _mm_setcsr(saved_csr);
+#endif
   }
   return threads;
 }

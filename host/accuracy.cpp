@@ -11,7 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "bench.hpp"
+#include "launch_timing.hpp"
+#include "stats.hpp"
 #include "cl_renderer.hpp"
 #include "compare_json.hpp"
 #include "device.hpp"
@@ -22,6 +23,8 @@
 #include "reference.hpp"
 
 namespace clrt {
+
+std::string AccuracyRow::time_source() const { return clrt::time_source(host_timed_launches, launches); }
 
 std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes, const AccuracySettings& s) {
   DeviceInfo dev = select_device(s.device);
@@ -55,7 +58,10 @@ std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes,
       for (size_t k = 0; k < cls.size(); ++k) {
         if (!cls[k]) continue;
         (void)cls[k]->render();
-        rows[first + k].kernel_ms.push_back(cls[k]->timings().kernel_ms);
+        const RenderTimings& t = cls[k]->timings();
+        rows[first + k].kernel_ms.push_back(t.kernel_ms);
+        rows[first + k].launches += t.launches;
+        rows[first + k].host_timed_launches += t.host_timed_launches;
       }
     for (size_t k = first; k < rows.size(); ++k) rows[k].median_ms = median(rows[k].kernel_ms);
   }
@@ -89,7 +95,9 @@ Cells cells(const std::vector<AccuracyRow>& rows) {
       continue;
     }
     const Comparison& e = r.error;
-    c.body.push_back({base_name(r.scene), r.variant, fmt("%.2f", r.median_ms), std::to_string(e.off_by_gt1),
+    // "h": timed by the host clock, the device's profiling events were implausible.
+    const std::string ms = fmt("%.2f", r.median_ms) + (r.host_timed_launches ? " h" : "");
+    c.body.push_back({base_name(r.scene), r.variant, ms, std::to_string(e.off_by_gt1),
                       fmt("%.4f", e.percent_off_by_gt1()), std::to_string(e.max_abs_8bit), fmt("%.4f", e.rmse_8bit),
                       format_psnr(e.psnr_8bit), std::to_string(e.nan_inf), std::to_string(e.hit_flips),
                       std::to_string(e.shadow_flips)});
@@ -117,6 +125,11 @@ std::string accuracy_table(const std::vector<AccuracyRow>& rows) {
   for (const auto& r : c.body) line(r);
   for (const auto& r : rows)
     if (!r.supported) os << base_name(r.scene) << " " << r.variant << ": " << r.note << "\n";
+  for (const auto& r : rows)
+    if (r.host_timed_launches) {
+      os << "h: timed by the host wall clock (the device's profiling events were implausible)\n";
+      break;
+    }
   return os.str();
 }
 
@@ -144,7 +157,10 @@ std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySe
     if (!r.supported) {
       j["note"] = r.note;
     } else {
-      j.update({{"kernel_ms_median", r.median_ms}, {"kernel_ms", r.kernel_ms}});
+      j.update({{"kernel_ms_median", r.median_ms},
+                {"kernel_ms", r.kernel_ms},
+                {"kernel", stats_json(summarize(r.kernel_ms))},
+                {"kernel_time_source", r.time_source()}});
       j.update(comparison_json(r.error));
     }
     arr.push_back(j);
@@ -155,16 +171,16 @@ std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySe
 
 void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path) {
   std::ostringstream f;
-  f << "scene,variant,depth,supported,kernel_ms_median,pixels,off_by_gt1,percent_off_by_gt1,max_abs_8bit,"
+  f << "scene,variant,depth,supported,kernel_ms_median,kernel_time_source,pixels,off_by_gt1,percent_off_by_gt1,max_abs_8bit,"
        "max_abs_float,rmse_8bit,rmse_float,psnr_8bit,psnr_float,nan_inf,hit_flips,shadow_flips\n";
   for (const auto& r : rows) {
     const Comparison& e = r.error;
     f << '"' << r.scene << "\"," << r.variant << ',' << r.depth << ',' << (r.supported ? 1 : 0) << ',';
     if (!r.supported) {
-      f << ",,,,,,,,,,,,\n";
+      f << ",,,,,,,,,,,,,\n";
       continue;
     }
-    f << r.median_ms << ',' << e.pixels << ',' << e.off_by_gt1 << ',' << e.percent_off_by_gt1() << ',' << e.max_abs_8bit
+    f << r.median_ms << ',' << r.time_source() << ',' << e.pixels << ',' << e.off_by_gt1 << ',' << e.percent_off_by_gt1() << ',' << e.max_abs_8bit
       << ',' << e.max_abs_float << ',' << e.rmse_8bit << ',' << e.rmse_float << ','
       << (std::isinf(e.psnr_8bit) ? "inf" : std::to_string(e.psnr_8bit)) << ','
       << (std::isinf(e.psnr_float) ? "inf" : std::to_string(e.psnr_float)) << ',' << e.nan_inf << ',' << e.hit_flips

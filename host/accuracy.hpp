@@ -27,8 +27,10 @@ struct AccuracyRow {
   int depth = 0;
   bool supported = true;
   std::string note;               // why unsupported
-  std::vector<double> kernel_ms;  // every timed launch
+  std::vector<double> kernel_ms;  // every timed frame (summed over its launches)
   double median_ms = 0;
+  int launches = 0, host_timed_launches = 0;  // over the timed frames (launch_timing.hpp)
+  std::string time_source() const;            // "events", "host" or "mixed"
   Comparison error;  // against the reference
 };
 

@@ -1,12 +1,13 @@
-// bench.cpp - one device, one scene: every time of the pipeline, rays, and
-// the reference / OpenMP comparisons measured in the same run.
+// bench.cpp - one scene on one or more devices: every time of the pipeline,
+// rays, the device's measured peak, and the reference / OpenMP comparisons
+// measured in the same run.
 #include "bench.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 
+#include "launch_timing.hpp"
 #include "omp_tracer.hpp"
 #include "reference.hpp"
 #include "timer.hpp"
@@ -21,18 +22,15 @@ MultiRenderer make_renderer(const std::vector<DeviceInfo>& devs, const KernelCon
   return r;
 }
 
+double download_ms(MultiRenderer& cl) {
+  double ms = 0;
+  for (size_t d = 0; d < cl.size(); ++d) ms += cl.renderer(d).timings().download_ms;
+  return ms;
+}
+
 }  // namespace
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-double cpu_peak_gflops(const DeviceInfo& dev) {
-  return double(dev.compute_units) * dev.clock_mhz * 1e-3 * 16 * 2 * 2;
-}
+std::string BenchResult::kernel_time_source() const { return time_source(host_timed_launches, launches); }
 
 BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const KernelConfig& cfg,
                       const BenchSettings& s) {
@@ -41,51 +39,81 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   r.width = s.width;
   r.height = s.height;
   r.depth = s.depth;
-  r.repeat = s.repeat;
+  r.repeat = std::max(1, s.repeat);
+  const int build_repeat = std::min(r.repeat, kMaxBuildRepeat);
 
+  std::vector<double> cold, warm, uploads;
   if (s.builds) {
     // Cold: from source, program cache bypassed (PoCL's own cache is only
     // off if POCL_KERNEL_CACHE=0 is set; see docs/performance.md).
-    KernelConfig cold = cfg;
-    cold.use_cache = false;
-    MultiRenderer c = make_renderer(devs, cold, s);
-    c.prepare(scene, s.width, s.height, s.depth);
-    r.build_cold_ms = c.build_ms();
-    // Make sure the entry exists, then time a load from the cache.
+    KernelConfig no_cache = cfg;
+    no_cache.use_cache = false;
+    for (int i = 0; i < build_repeat; ++i) {
+      MultiRenderer c = make_renderer(devs, no_cache, s);
+      c.prepare(scene, s.width, s.height, s.depth);
+      cold.push_back(c.build_ms());
+    }
+    // Make sure the entry exists, then time loads from the cache.
     if (cfg.use_cache) {
-      MultiRenderer store = make_renderer(devs, cfg, s);
-      store.prepare(scene, s.width, s.height, s.depth);
+      r.build_warm_cached = true;
+      for (int i = 0; i <= build_repeat; ++i) {
+        MultiRenderer c = make_renderer(devs, cfg, s);
+        c.prepare(scene, s.width, s.height, s.depth);
+        if (i == 0) continue;  // the one that stores the entry
+        warm.push_back(c.build_ms());
+        uploads.push_back(c.upload_ms());
+        for (size_t d = 0; d < c.size(); ++d)
+          r.build_warm_cached = r.build_warm_cached && c.renderer(d).timings().build_cached;
+      }
     }
   }
 
-  // End to end on a fresh renderer: (warm) build + upload + first render.
-  auto t0 = std::chrono::steady_clock::now();
+  // End to end on a fresh renderer: (warm) build + upload + first frame.
+  const auto t0 = Clock::now();
   MultiRenderer cl = make_renderer(devs, cfg, s);
   cl.prepare(scene, s.width, s.height, s.depth);
-  r.build_warm_ms = cl.build_ms();
-  r.build_warm_cached = true;
-  for (size_t i = 0; i < cl.size(); ++i) r.build_warm_cached = r.build_warm_cached && cl.renderer(i).timings().build_cached;
-  r.upload_ms = cl.upload_ms();
   r.options = cl.renderer(0).options();
+  if (warm.empty()) {
+    warm.push_back(cl.build_ms());
+    r.build_warm_cached = cfg.use_cache;
+    for (size_t d = 0; d < cl.size(); ++d) r.build_warm_cached = r.build_warm_cached && cl.renderer(d).timings().build_cached;
+  }
+  uploads.push_back(cl.upload_ms());
   r.image = cl.render();
   r.end_to_end_ms = ms_since(t0);
   r.first_launch_ms = cl.kernel_ms();
+  r.build_cold = summarize(cold);
+  r.build_warm = summarize(warm);
+  r.upload = summarize(uploads);
 
-  std::vector<double> downloads, frames;
-  for (int i = 0; i < std::max(1, s.repeat); ++i) {
+  // Timed rounds: a clrt frame, then an OpenMP frame of the same image, so
+  // background load on a shared machine falls on both alike and each round
+  // gives one like-for-like ratio.
+  std::vector<float> omp_rgb;
+  if (s.omp) r.omp_threads = clrt_bench::omp_render(scene, s.width, s.height, s.depth, omp_rgb);  // warm-up
+  std::vector<double> frames, downloads, omp_ms, frame_ratio, kernel_ratio;
+  for (int i = 0; i < r.repeat; ++i) {
     r.image = cl.render();
     r.kernel_ms.push_back(cl.kernel_ms());
     frames.push_back(cl.wall_ms());
-    double dl = 0;
-    for (size_t d = 0; d < cl.size(); ++d) dl += cl.renderer(d).timings().download_ms;
-    downloads.push_back(dl);
+    downloads.push_back(download_ms(cl));
+    r.launches += cl.launches();
+    r.host_timed_launches += cl.host_timed_launches();
+    if (s.omp) {
+      const auto t1 = Clock::now();
+      r.omp_threads = clrt_bench::omp_render(scene, s.width, s.height, s.depth, omp_rgb);
+      omp_ms.push_back(ms_since(t1));
+      if (frames.back() > 0) frame_ratio.push_back(omp_ms.back() / frames.back());
+      if (r.kernel_ms.back() > 0) kernel_ratio.push_back(omp_ms.back() / r.kernel_ms.back());
+    }
   }
   r.shares = cl.shares();
-  r.frame_ms_median = median(frames);
-  r.kernel_ms_median = median(r.kernel_ms);
-  r.kernel_ms_min = *std::min_element(r.kernel_ms.begin(), r.kernel_ms.end());
-  r.kernel_ms_max = *std::max_element(r.kernel_ms.begin(), r.kernel_ms.end());
-  r.download_ms = median(downloads);
+  r.kernel = summarize(r.kernel_ms);
+  r.frame = summarize(frames);
+  r.download = summarize(downloads);
+  r.omp = summarize(omp_ms);
+  r.speedup_vs_omp = summarize(frame_ratio);
+  r.kernel_speedup_vs_omp = summarize(kernel_ratio);
 
   // Rays: a separate build with per-pixel counters (they cost time).
   KernelConfig counting = cfg;
@@ -94,30 +122,27 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   rc.prepare(scene, s.width, s.height, s.depth);
   (void)rc.render();
   r.rays = rc.ray_counts();
-  if (r.kernel_ms_median > 0) {
-    r.mrays_per_s = r.rays.total() / (r.kernel_ms_median * 1e3);
-    r.gflops = kFlopPerSphereTest * r.rays.sphere_tests / (r.kernel_ms_median * 1e6);
+  if (r.kernel.median > 0) {
+    r.mrays_per_s = r.rays.total() / (r.kernel.median * 1e3);
+    r.gflops = kFlopPerSphereTest * r.rays.sphere_tests / (r.kernel.median * 1e6);
   }
-  if (r.rays.sphere_tests) r.ns_per_sphere_test = r.kernel_ms_median * 1e6 / r.rays.sphere_tests;
-  for (const auto& d : devs)
-    if (d.type.find("CPU") != std::string::npos) r.peak_gflops += cpu_peak_gflops(d);
+  if (r.rays.sphere_tests) r.ns_per_sphere_test = r.kernel.median * 1e6 / r.rays.sphere_tests;
+
+  if (s.peak) {
+    bool all = true;
+    for (const auto& d : devs) {
+      r.peaks.push_back(measure_peak_flops(d));
+      all = all && r.peaks.back().measured;
+      r.peak_gflops += r.peaks.back().gflops;
+    }
+    if (!all) r.peak_gflops = 0;
+  }
 
   if (s.reference) {
-    auto t1 = std::chrono::steady_clock::now();
-    r.reference = render_reference(scene, s.width, s.height, s.depth);
-    r.reference_ms = ms_since(t1);
-    if (r.kernel_ms_median > 0) r.speedup_vs_reference = r.reference_ms / r.kernel_ms_median;
-  }
-  if (s.omp) {
-    std::vector<float> rgb;
-    std::vector<double> t;
-    for (int i = 0; i <= std::max(1, s.repeat); ++i) {  // first run is the warm-up
-      auto t2 = std::chrono::steady_clock::now();
-      r.omp_threads = clrt_bench::omp_render(scene, s.width, s.height, s.depth, rgb);
-      if (i > 0) t.push_back(ms_since(t2));
-    }
-    r.omp_ms_median = median(t);
-    if (r.kernel_ms_median > 0) r.opencl_speedup_vs_omp = r.omp_ms_median / r.kernel_ms_median;
+    const auto t2 = Clock::now();
+    r.reference_image = render_reference(scene, s.width, s.height, s.depth);
+    r.reference = summarize({ms_since(t2)});
+    if (r.frame.median > 0) r.speedup_vs_reference = r.reference.median / r.frame.median;
   }
   return r;
 }
@@ -129,6 +154,7 @@ nlohmann::json shares_json(const std::vector<DeviceShare>& shares) {
                  {"tiles", d.tiles},
                  {"rows", d.rows},
                  {"kernel_ms", d.kernel_ms},
+                 {"kernel_time_source", time_source(d.host_timed_launches, d.tiles)},
                  {"busy_ms", d.busy_ms},
                  {"longest_launch_ms", d.max_launch_ms}});
   return a;
@@ -136,25 +162,46 @@ nlohmann::json shares_json(const std::vector<DeviceShare>& shares) {
 
 nlohmann::json bench_json(const BenchResult& r) {
   const char* pocl_cache = std::getenv("POCL_KERNEL_CACHE");
+  nlohmann::json peaks = nlohmann::json::array();
+  for (const auto& p : r.peaks) {
+    nlohmann::json j = {{"measured", p.measured}};
+    if (p.measured)
+      j.update({{"gflops", p.gflops},
+                {"launch_ms", stats_json(p.launch_ms)},
+                {"time_source", p.from_events ? "events" : "host"}});
+    else
+      j["note"] = p.note;
+    peaks.push_back(j);
+  }
+  // Flat *_ms / *_median keys are the medians of the matching Stats objects.
   return {{"device", r.device},
           {"build_options", r.options},
           {"width", r.width},
           {"height", r.height},
           {"depth", r.depth},
           {"repeat", r.repeat},
-          {"build_cold_ms", r.build_cold_ms},
-          {"build_warm_ms", r.build_warm_ms},
+          {"build_cold", stats_json(r.build_cold)},
+          {"build_cold_ms", r.build_cold.median},
+          {"build_warm", stats_json(r.build_warm)},
+          {"build_warm_ms", r.build_warm.median},
           {"build_warm_cached", r.build_warm_cached},
           {"pocl_kernel_cache", pocl_cache ? pocl_cache : "default"},
-          {"upload_ms", r.upload_ms},
+          {"upload", stats_json(r.upload)},
+          {"upload_ms", r.upload.median},
           {"first_launch_ms", r.first_launch_ms},
           {"kernel_ms", r.kernel_ms},
-          {"kernel_ms_median", r.kernel_ms_median},
-          {"kernel_ms_min", r.kernel_ms_min},
-          {"kernel_ms_max", r.kernel_ms_max},
-          {"frame_ms_median", r.frame_ms_median},
+          {"kernel", stats_json(r.kernel)},
+          {"kernel_ms_median", r.kernel.median},
+          {"kernel_ms_min", r.kernel.min},
+          {"kernel_ms_max", r.kernel.max},
+          {"kernel_time_source", r.kernel_time_source()},
+          {"launches", r.launches},
+          {"host_timed_launches", r.host_timed_launches},
+          {"frame", stats_json(r.frame)},
+          {"frame_ms_median", r.frame.median},
           {"devices", shares_json(r.shares)},
-          {"download_ms", r.download_ms},
+          {"download", stats_json(r.download)},
+          {"download_ms", r.download.median},
           {"end_to_end_ms", r.end_to_end_ms},
           {"rays_primary", r.rays.primary},
           {"rays_shadow", r.rays.shadow},
@@ -165,43 +212,67 @@ nlohmann::json bench_json(const BenchResult& r) {
           {"ns_per_sphere_test", r.ns_per_sphere_test},
           {"flop_per_sphere_test", kFlopPerSphereTest},
           {"gflops", r.gflops},
-          {"peak_gflops", r.peak_gflops},
-          {"reference_ms", r.reference_ms},
+          {"peak_gflops", r.peak_gflops > 0 ? nlohmann::json(r.peak_gflops) : nlohmann::json()},
+          {"peaks", peaks},
+          {"reference", stats_json(r.reference)},
+          {"reference_ms", r.reference.median},
           {"speedup_vs_reference", r.speedup_vs_reference},
-          {"omp_ms_median", r.omp_ms_median},
+          {"omp", stats_json(r.omp)},
+          {"omp_ms_median", r.omp.median},
           {"omp_threads", r.omp_threads},
-          {"opencl_speedup_vs_omp", r.opencl_speedup_vs_omp}};
+          {"speedup_vs_omp", stats_json(r.speedup_vs_omp)},
+          {"opencl_speedup_vs_omp", r.speedup_vs_omp.median},
+          {"kernel_speedup_vs_omp", stats_json(r.kernel_speedup_vs_omp)}};
 }
 
 void print_bench(const BenchResult& r) {
+  const std::string source = time_source_note(r.host_timed_launches, r.launches);
   std::printf("device         %s\n", r.device.c_str());
-  std::printf("image          %dx%d, depth %d, %d timed launches after a warm-up\n", r.width, r.height, r.depth,
+  std::printf("image          %dx%d, depth %d, %d timed rounds after a warm-up\n", r.width, r.height, r.depth,
               r.repeat);
   std::printf("options        %s\n", r.options.c_str());
-  std::printf("build          cold %.1f ms (no program cache), warm %.1f ms%s\n", r.build_cold_ms, r.build_warm_ms,
+  std::printf("build cold     %s (no program cache)\n", format_stats(r.build_cold, "ms", 1).c_str());
+  std::printf("build warm     %s%s\n", format_stats(r.build_warm, "ms", 1).c_str(),
               r.build_warm_cached ? " (cache hit)" : " (cache miss)");
-  std::printf("upload         %.3f ms\n", r.upload_ms);
-  std::printf("kernel         median %.2f ms, min %.2f, max %.2f (first launch %.2f ms)\n", r.kernel_ms_median,
-              r.kernel_ms_min, r.kernel_ms_max, r.first_launch_ms);
-  std::printf("frame          median %.2f ms wall (all devices, launches + downloads)\n", r.frame_ms_median);
+  std::printf("upload         %s\n", format_stats(r.upload, "ms", 3).c_str());
+  std::printf("frame          %s (warm: launches + download into host memory)\n", format_stats(r.frame).c_str());
+  std::printf("kernel         %s%s\n", format_stats(r.kernel).c_str(), source.c_str());
+  std::printf("download       %s\n", format_stats(r.download).c_str());
   if (r.shares.size() > 1) {
     std::printf("tiles          share of the last timed frame per device:\n");
     print_shares(r.shares);
   }
-  std::printf("download       %.2f ms\n", r.download_ms);
-  std::printf("end to end     %.1f ms (new renderer: build + upload + render)\n", r.end_to_end_ms);
+  std::printf("end to end     %.1f ms (N=1: new renderer, build + upload + first frame; its kernel %.2f ms)\n",
+              r.end_to_end_ms, r.first_launch_ms);
   std::printf("rays           %llu total: %llu primary, %llu shadow, %llu reflection; %llu ray-sphere tests\n",
               (unsigned long long)r.rays.total(), (unsigned long long)r.rays.primary, (unsigned long long)r.rays.shadow,
               (unsigned long long)r.rays.reflection, (unsigned long long)r.rays.sphere_tests);
-  std::printf("throughput     %.1f Mrays/s, %.3f ns per ray-sphere test\n", r.mrays_per_s, r.ns_per_sphere_test);
-  std::printf("GFLOP/s        %.1f (%.0f FLOP per ray-sphere test) of %.0f peak (%.1f%%)\n", r.gflops,
-              kFlopPerSphereTest, r.peak_gflops, r.peak_gflops > 0 ? 100 * r.gflops / r.peak_gflops : 0.0);
-  if (r.reference_ms > 0)
-    std::printf("reference      %.1f ms (scalar double, 1 thread): OpenCL is %.2fx faster\n", r.reference_ms,
-                r.speedup_vs_reference);
-  if (r.omp_ms_median > 0)
-    std::printf("OpenMP float   %.1f ms median (%d threads, -O3 -march=native): OpenCL is %.2fx faster\n",
-                r.omp_ms_median, r.omp_threads, r.opencl_speedup_vs_omp);
+  std::printf("throughput     %.1f Mrays/s, %.3f ns per ray-sphere test (median kernel time%s)\n", r.mrays_per_s,
+              r.ns_per_sphere_test, r.host_timed_launches ? ", host clock" : "");
+  if (r.peak_gflops > 0)
+    std::printf("GFLOP/s        %.1f (%.0f FLOP per ray-sphere test) of %.0f measured peak (%.1f%%)\n", r.gflops,
+                kFlopPerSphereTest, r.peak_gflops, 100 * r.gflops / r.peak_gflops);
+  else
+    std::printf("GFLOP/s        %.1f (%.0f FLOP per ray-sphere test); device peak unknown%s\n", r.gflops,
+                kFlopPerSphereTest, r.peaks.empty() ? " (not measured)" : "");
+  for (size_t i = 0; i < r.peaks.size(); ++i) {
+    const auto& p = r.peaks[i];
+    if (p.measured)
+      std::printf("  peak %zu       %.1f GFLOP/s multiply-add kernel, best of %d launches (%s)\n", i, p.gflops,
+                  p.launch_ms.n, p.from_events ? "profiling events" : "host clock");
+    else
+      std::printf("  peak %zu       unknown: %s\n", i, p.note.c_str());
+  }
+  if (r.reference.n > 0)
+    std::printf("reference      %s (scalar double, 1 thread): clrt frame is %.2fx faster\n",
+                format_stats(r.reference, "ms", 1).c_str(), r.speedup_vs_reference);
+  if (r.omp.n > 0) {
+    std::printf("OpenMP float   %s (%d threads, -O3 -march=native)\n", format_stats(r.omp).c_str(), r.omp_threads);
+    std::printf("vs OpenMP      clrt frame is %s faster (OpenMP frame / clrt frame, per round)\n",
+                format_stats(r.speedup_vs_omp, "x").c_str());
+    std::printf("  kernel only  %s (OpenMP frame / clrt kernel time%s)\n",
+                format_stats(r.kernel_speedup_vs_omp, "x").c_str(), r.host_timed_launches ? ", host clock" : "");
+  }
 }
 
 }  // namespace clrt

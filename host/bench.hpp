@@ -1,9 +1,15 @@
-// bench.hpp - `clrt bench`: build (cold/warm), upload, kernel (median/min/max
-// of N timed launches after a warm-up), download and end-to-end times of the
-// OpenCL renderer on one or more devices (several share each frame, see
-// multi_renderer.hpp), rays by kind (counted by the kernel), and in
-// the same run the scalar double reference and the OpenMP float tracer
-// (bench/omp_tracer.hpp) for speedups.
+// bench.hpp - `clrt bench`: build (cold/warm), upload, kernel, download and
+// frame times of the OpenCL renderer on one or more devices (several share
+// each frame, see multi_renderer.hpp), rays by kind (counted by the kernel),
+// the device's measured multiply-add peak, and in the same run the scalar
+// double reference and the OpenMP float tracer (bench/omp_tracer.hpp).
+//
+// Like for like: the headline comparison is clrt's warm frame (every launch
+// plus the download into host memory) against the OpenMP tracer's frame,
+// timed in alternating rounds so background load falls on both; kernel-only
+// ratios are secondary. Every timed figure is a Stats (N, median, mean ± sd,
+// min, max). Kernel times are profiling events checked against the host
+// clock (launch_timing.hpp); the result says which clock they came from.
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>
@@ -11,23 +17,29 @@
 
 #include "build_options.hpp"
 #include "cl_renderer.hpp"
-#include "multi_renderer.hpp"
 #include "device.hpp"
 #include "image.hpp"
+#include "multi_renderer.hpp"
+#include "peak_flops.hpp"
 #include "scene.hpp"
+#include "stats.hpp"
 #include "tile_scheduler.hpp"
 
 namespace clrt {
 
 struct BenchSettings {
   int width = 600, height = 600, depth = 3;
-  int repeat = 5;  // timed launches after one warm-up launch
+  int repeat = 5;  // timed rounds (clrt frame + OpenMP frame) after one warm-up each
   int local_x = 0, local_y = 0;
   bool reference = true;  // time the scalar double reference (and keep its image)
   bool omp = true;        // time the OpenMP float tracer
   bool builds = true;     // measure cold (no cache) and warm (cache hit) builds
+  bool peak = true;       // measure the device's multiply-add peak
   TilePolicy policy;      // bands per launch (tile_scheduler.hpp)
 };
+
+// Builds timed per kind: at most this many (a cold build costs up to seconds).
+constexpr int kMaxBuildRepeat = 3;
 
 // Nominal FLOP counts (the book's float formulas, see docs/performance.md):
 // a ray-sphere test is O-C (3), D.D (5), 2 CO.D (6), CO.CO - r^2 (7),
@@ -35,29 +47,35 @@ struct BenchSettings {
 // arithmetic are not counted, so GFLOP/s is a lower bound.
 constexpr double kFlopPerSphereTest = 25;
 
-// Peak single-precision GFLOP/s assumed for a CPU device: compute units x
-// clock x 16 lanes (AVX-512) x 2 (FMA) x 2 FMA units per core.
-double cpu_peak_gflops(const DeviceInfo& dev);
-
 struct BenchResult {
   std::string device, options;
   int width = 0, height = 0, depth = 0, repeat = 0;
-  double build_cold_ms = 0, build_warm_ms = 0;
+  Stats build_cold, build_warm;  // ms per build of every device (the longest, they run in parallel)
   bool build_warm_cached = false;
-  double upload_ms = 0, first_launch_ms = 0;
+  Stats upload;                 // ms, scene buffers (one per build above)
+  double end_to_end_ms = 0;     // N=1: new renderer, (warm) build + upload + first frame
+  double first_launch_ms = 0;   // N=1: kernel time of that first frame
   std::vector<double> kernel_ms;  // each timed frame: kernel time summed over launches (and devices)
-  double frame_ms_median = 0;     // wall time of render() (all devices together)
-  std::vector<DeviceShare> shares;  // per device, median-ish (last timed) frame
-  double kernel_ms_median = 0, kernel_ms_min = 0, kernel_ms_max = 0;
-  double download_ms = 0;    // median run
-  double end_to_end_ms = 0;  // new renderer: (warm) build + upload + render
+  Stats kernel;                 // of kernel_ms
+  int launches = 0, host_timed_launches = 0;  // over the timed frames (launch_timing.hpp)
+  Stats frame;                  // wall ms of a warm frame: every launch + download into host memory
+  Stats download;               // ms per frame
+  std::vector<DeviceShare> shares;  // per device, last timed frame
   RayCounts rays;
-  double mrays_per_s = 0, ns_per_sphere_test = 0, gflops = 0, peak_gflops = 0;
-  double reference_ms = 0, speedup_vs_reference = 0;    // reference / kernel median
-  double omp_ms_median = 0, opencl_speedup_vs_omp = 0;  // omp / kernel median
+  double mrays_per_s = 0, ns_per_sphere_test = 0, gflops = 0;  // from the median kernel time
+  std::vector<PeakFlops> peaks;  // per device
+  double peak_gflops = 0;        // sum of the measured peaks; 0 when any is unknown
+  Stats reference;               // ms, scalar double reference (N=1)
+  double speedup_vs_reference = 0;  // reference / frame (medians)
+  Stats omp;                     // ms per OpenMP frame
   int omp_threads = 0;
+  Stats speedup_vs_omp;          // per round: OpenMP frame / clrt frame (the headline)
+  Stats kernel_speedup_vs_omp;   // per round: OpenMP frame / clrt kernel time (secondary)
   Image image;      // the OpenCL image (last timed run)
-  Image reference;  // the reference image (if settings.reference)
+  Image reference_image;  // the reference image (if settings.reference)
+
+  // "events", "host" or "mixed" (launch_timing.hpp)
+  std::string kernel_time_source() const;
 };
 
 BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const KernelConfig& cfg,
@@ -66,7 +84,5 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
 nlohmann::json bench_json(const BenchResult& r);
 nlohmann::json shares_json(const std::vector<DeviceShare>& shares);
 void print_bench(const BenchResult& r);
-
-double median(std::vector<double> v);
 
 }  // namespace clrt

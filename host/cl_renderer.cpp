@@ -13,8 +13,10 @@ namespace clrt {
 namespace {
 
 double event_ms(const cl::Event& ev) {
-  cl_ulong start = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
-  cl_ulong end = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+  // As doubles: a driver that reports END before START gives a negative
+  // (implausible) time instead of a wrapped-around huge one.
+  double start = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_START>());
+  double end = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_END>());
   return (end - start) * 1e-6;
 }
 
@@ -71,7 +73,7 @@ void ClRenderer::ensure_tile_buffers(size_t pixels) {
   tile_capacity_ = pixels;
 }
 
-double ClRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
+LaunchTime ClRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
   const size_t n = size_t(w) * h;
   ensure_tile_buffers(n);
   kernel_.setArg(0, params_);
@@ -95,9 +97,11 @@ double ClRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
   // work-items outside the tile.
   cl::NDRange global((gw + lx - 1) / lx * lx, (h + ly - 1) / ly * ly), local(lx, ly);
   cl::Event ev;
+  const auto launched = Clock::now();
   queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, global, local, nullptr, &ev);
   ev.wait();
-  double kms = event_ms(ev);
+  const double wall_ms = ms_since(launched);
+  const LaunchTime time = launch_time(event_ms(ev), wall_ms);
 
   auto t0 = std::chrono::steady_clock::now();
   std::vector<float> rgb(n * 3);
@@ -124,19 +128,20 @@ double ClRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
     }
   }
   timings_.download_ms += ms_since(t0);
-  return kms;
+  return time;
 }
 
 void ClRenderer::begin_frame() {
   counts_ = {};
   timings_.kernel_ms = timings_.download_ms = timings_.total_ms = 0;
-  timings_.launches = 0;
+  timings_.launches = timings_.host_timed_launches = 0;
 }
 
 void ClRenderer::end_frame(const DeviceShare& share, double wall_ms) {
   share_ = share;
   timings_.kernel_ms = share.kernel_ms;
   timings_.launches = share.tiles;
+  timings_.host_timed_launches = share.host_timed_launches;
   timings_.total_ms = wall_ms;
 }
 

@@ -7,6 +7,7 @@
 #include "cl.hpp"
 #include "device.hpp"
 #include "image.hpp"
+#include "launch_timing.hpp"
 #include "program.hpp"
 #include "scene.hpp"
 #include "scene_buffers.hpp"
@@ -23,10 +24,11 @@ struct RenderTimings {
   double build_ms = 0;     // program build (or cache load)
   bool build_cached = false;
   double upload_ms = 0;    // scene buffers to the device
-  double kernel_ms = 0;    // sum of kernel times from profiling events
+  double kernel_ms = 0;    // sum of kernel times (profiling events, checked against the host clock)
   double download_ms = 0;  // image back to the host
   double total_ms = 0;     // wall time of render(), excluding build/upload
   int launches = 0;        // kernel launches (tiles)
+  int host_timed_launches = 0;  // launches whose events were implausible (timed by the host, launch_timing.hpp)
 };
 
 class ClRenderer {
@@ -45,8 +47,9 @@ class ClRenderer {
   // Records a frame's totals from the scheduler (kernel ms, launches, wall).
   void end_frame(const DeviceShare& share, double wall_ms);
   // Renders one tile [x0, x0+w) x [y0, y0+h) into `dst` (a full-size image).
-  // Returns the kernel time in ms from the profiling event.
-  double render_tile(int x0, int y0, int w, int h, Image& dst);
+  // Returns the launch's kernel time (profiling event, or the host wall time
+  // where the event is implausible: launch_timing.hpp).
+  LaunchTime render_tile(int x0, int y0, int w, int h, Image& dst);
 
   const RenderTimings& timings() const { return timings_; }
   const RayCounts& ray_counts() const { return counts_; }

@@ -24,8 +24,10 @@ void add_render_command(CLI::App& app) {
     Image img = run_engine(o->engine, scene, *o, depth, &run);
     write_image(img, *out);
     if (o->engine == "opencl")
-      std::printf("%s: %dx%d depth %d on %s: kernel %.2f ms, build %.1f ms%s\n", out->c_str(), o->width, o->height,
-                  depth, run.device.c_str(), run.cl.kernel_ms, run.cl.build_ms, run.cl.build_cached ? " (cached)" : "");
+      std::printf("%s: %dx%d depth %d on %s: kernel %.2f ms%s, build %.1f ms%s\n", out->c_str(), o->width, o->height,
+                  depth, run.device.c_str(), run.cl.kernel_ms,
+                  time_source_note(run.cl.host_timed_launches, run.cl.launches).c_str(), run.cl.build_ms,
+                  run.cl.build_cached ? " (cached)" : "");
     if (run.shares.size() > 1) print_shares(run.shares);
     if (o->engine != "opencl")
       std::printf("%s: %dx%d depth %d with the reference renderer: %.1f ms\n", out->c_str(), o->width, o->height, depth,

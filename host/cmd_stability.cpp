@@ -31,7 +31,7 @@ void add_stability_command(CLI::App& app) {
   cmd->add_option("--height", o->height, "Image height in pixels (default 120)");
   cmd->add_option("--device", o->device, "Device index or name/type substring (default: first GPU, else first)");
   cmd->add_flag("--json", o->json, "Print one JSON object");
-  cmd->add_flag("--check", o->check, "Exit with status 2 if a result differs from its declared expectation");
+  cmd->add_flag("--check", o->check, "Exit with status 1 if a result differs from its declared expectation");
   cmd->add_flag("--no-ftz", o->no_ftz, "Do not build with -cl-denorms-are-zero");
   cmd->add_option("--kernel-dir", o->kernel_dir, "Read kernels from this directory instead of the embedded copies");
   cmd->callback([o] {
@@ -99,7 +99,7 @@ void add_stability_command(CLI::App& app) {
       std::printf("\nexpectations: %s\n", unmet ? (std::to_string(unmet) + " not met").c_str() : "all met");
     }
     if (o->check && unmet)
-      throw UserError("stability: " + std::to_string(unmet) + " result(s) differ from expectation");
+      throw CheckFailure("stability: " + std::to_string(unmet) + " result(s) differ from expectation");
   });
 }
 

@@ -35,6 +35,14 @@ Comparison compare_images(const Image& test, const Image& ref) {
       c.max_abs_float = std::max(c.max_abs_float, std::fabs(df));
     }
     c.nan_inf += bad;
+    if (maxd > c.max_abs_8bit) {
+      c.worst_x = int(p % size_t(ref.width));
+      c.worst_y = int(p / size_t(ref.width));
+      for (int k = 0; k < 3; ++k) {
+        c.worst_test[k] = to_u8(test.rgb[p * 3 + k]);
+        c.worst_reference[k] = to_u8(ref.rgb[p * 3 + k]);
+      }
+    }
     c.differ += maxd > 0;
     c.off_by_gt1 += maxd > 1;
     c.max_abs_8bit = std::max(c.max_abs_8bit, maxd);
@@ -49,6 +57,27 @@ Comparison compare_images(const Image& test, const Image& ref) {
   c.psnr_8bit = psnr(c.rmse_8bit);
   c.psnr_float = psnr(c.rmse_float);
   return c;
+}
+
+Verdict judge(const Comparison& c, const Thresholds& t) {
+  Verdict v;
+  auto fail = [&v](const std::string& why) {
+    v.pass = false;
+    v.reason += (v.reason.empty() ? "" : "; ") + why;
+  };
+  char buf[160];
+  if (t.fail_percent >= 0 && c.percent_off_by_gt1() > t.fail_percent) {
+    std::snprintf(buf, sizeof buf, "%zu pixels (%.4f%%) off by more than one level, limit %g%% (--fail-percent)",
+                  c.off_by_gt1, c.percent_off_by_gt1(), t.fail_percent);
+    fail(buf);
+  }
+  if (t.fail_max >= 0 && c.max_abs_8bit > t.fail_max) {
+    std::snprintf(buf, sizeof buf, "largest error %d levels at (%d, %d), limit %d (--fail-max)", c.max_abs_8bit,
+                  c.worst_x, c.worst_y, t.fail_max);
+    fail(buf);
+  }
+  if (t.any() && c.nan_inf > 0) fail(std::to_string(c.nan_inf) + " NaN/Inf pixels");
+  return v;
 }
 
 std::vector<uint8_t> diff_image(const Image& test, const Image& ref) {

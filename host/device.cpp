@@ -80,14 +80,16 @@ std::vector<DeviceInfo> list_devices() {
   return out;
 }
 
+size_t default_device(const std::vector<DeviceInfo>& all) {
+  for (size_t i = 0; i < all.size(); ++i)
+    if (all[i].type.find("GPU") != std::string::npos) return i;
+  return 0;
+}
+
 std::vector<DeviceInfo> select_devices(const std::string& spec_in) {
   auto all = list_devices();
   const std::string spec = lower(spec_in);
-  if (spec.empty() || spec == "default") {
-    for (auto& d : all)
-      if (d.type.find("GPU") != std::string::npos) return {d};
-    return {all.front()};
-  }
+  if (spec.empty() || spec == "default") return {all[default_device(all)]};
   if (spec == "all") return all;
   std::vector<DeviceInfo> picked;
   std::stringstream ss(spec);

@@ -24,6 +24,10 @@ struct DeviceInfo {
 // when the ICD loader finds none.
 std::vector<DeviceInfo> list_devices();
 
+// Position in `all` (non-empty) of the default device: the first GPU, else
+// the first device.
+size_t default_device(const std::vector<DeviceInfo>& all);
+
 // Selects devices by SPEC: "" (first GPU, else first device), an index, a
 // comma-separated list of indices, "all", or a case-insensitive substring of
 // the device name, type (cpu/gpu/accelerator) or platform name (first match).

@@ -28,6 +28,8 @@ Image run_engine(const std::string& engine, const Scene& scene, const RenderOpti
     img = cl.render();
     r.cl = cl.renderer(0).timings();
     r.cl.kernel_ms = cl.kernel_ms();
+    r.cl.launches = cl.launches();
+    r.cl.host_timed_launches = cl.host_timed_launches();
     r.cl.build_ms = cl.build_ms();
     r.cl.upload_ms = cl.upload_ms();
     r.cl.total_ms = r.wall_ms = cl.wall_ms();

@@ -16,4 +16,13 @@ struct DeviceError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A check ran to the end and its result is outside what was asked for
+// (`compare --fail-*`, `stability --check`, `devices --check`): exit status 1.
+struct CheckFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Exit statuses, in one place (README "Exit status").
+constexpr int kExitOk = 0, kExitCheckFailed = 1, kExitBadInput = 2, kExitInternalError = 3;
+
 }  // namespace clrt

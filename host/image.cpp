@@ -81,6 +81,37 @@ void write_image(const Image& img, const std::string& path) {
   }
 }
 
+Image read_image(const std::string& path, int max_edge, long long max_pixels) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) {
+    std::string err = OIIO::geterror();
+    throw UserError(path + ": cannot read image: " + (err.empty() ? std::string("unknown error") : err));
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  const int w = spec.width, h = spec.height, nch = spec.nchannels;
+  if (nch < 3) throw UserError(path + ": cannot read image: " + std::to_string(nch) + " channel(s), need RGB");
+  if (w <= 0 || h <= 0 || w > max_edge || h > max_edge || (long long)w * h > max_pixels)
+    throw UserError(path + ": image " + std::to_string(w) + "x" + std::to_string(h) + " is too large or empty");
+  const bool floating = spec.format.is_floating_point();
+  Image img(w, h);
+  std::vector<float> f;
+  std::vector<uint8_t> u8;
+  bool ok;
+  if (floating) {
+    f.resize(img.rgb.size());
+    ok = in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, f.data());
+  } else {
+    u8.resize(img.rgb.size());
+    ok = in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, u8.data());
+  }
+  if (!ok) {
+    std::string err = in->geterror();
+    throw UserError(path + ": cannot read image: " + (err.empty() ? std::string("unknown error") : err));
+  }
+  for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = floating ? double(f[i]) : double(u8[i]);
+  return img;
+}
+
 void write_rgb8(const std::vector<uint8_t>& rgb, int width, int height, const std::string& path) {
   write_pixels(path, width, height, OIIO::TypeDesc::UINT8, rgb.data());
 }

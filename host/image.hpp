@@ -33,6 +33,11 @@ void check_output_format(const std::string& path);
 // a failed write never leaves a half-written OUT. EXR (and other float
 // formats) get the unclamped float colour; the rest get 8-bit sRGB values.
 void write_image(const Image& img, const std::string& path);
+// Reads the first three channels of an image file (untrusted input): float
+// formats as stored, integer formats as 8-bit values 0..255. hit/shadowed are
+// unknown (-1 / 0). UserError naming the file when it cannot be read, has
+// fewer than 3 channels, or is larger than max_edge per edge or max_pixels.
+Image read_image(const std::string& path, int max_edge, long long max_pixels);
 // Writes an 8-bit RGB buffer the same way.
 void write_rgb8(const std::vector<uint8_t>& rgb, int width, int height, const std::string& path);
 

@@ -10,10 +10,10 @@
 namespace {
 
 // Every error is one line on stderr, whatever a library put in its message.
-void report(std::string msg) {
+void report(std::string msg, const char* what = "error") {
   for (auto& c : msg)
     if (c == '\n' || c == '\r') c = ' ';
-  std::cerr << "clrt: error: " << msg << "\n";
+  std::cerr << "clrt: " << what << ": " << msg << "\n";
 }
 
 }  // namespace
@@ -36,19 +36,22 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     report(e.what());
-    return 2;
+    return clrt::kExitBadInput;
+  } catch (const clrt::CheckFailure& e) {
+    report(e.what(), "check failed");
+    return clrt::kExitCheckFailed;
   } catch (const clrt::UserError& e) {
     report(e.what());
-    return 2;
+    return clrt::kExitBadInput;
   } catch (const clrt::DeviceError& e) {
     report(e.what());
-    return 2;
+    return clrt::kExitBadInput;
   } catch (const cl::Error& e) {
     report(clrt::describe(e));
-    return 2;
+    return clrt::kExitBadInput;
   } catch (const std::exception& e) {
-    report(e.what());
-    return 1;
+    report(e.what(), "internal error");
+    return clrt::kExitInternalError;
   }
-  return 0;
+  return clrt::kExitOk;
 }

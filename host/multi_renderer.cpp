@@ -70,6 +70,18 @@ double MultiRenderer::kernel_ms() const {
   return s;
 }
 
+int MultiRenderer::launches() const {
+  int n = 0;
+  for (const auto& sh : shares_) n += sh.tiles;
+  return n;
+}
+
+int MultiRenderer::host_timed_launches() const {
+  int n = 0;
+  for (const auto& sh : shares_) n += sh.host_timed_launches;
+  return n;
+}
+
 double MultiRenderer::build_ms() const {
   double m = 0;
   for (const auto& r : renderers_) m = std::max(m, r->timings().build_ms);

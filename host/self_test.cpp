@@ -17,6 +17,8 @@ SelfTestResult self_test(const DeviceInfo& dev, const KernelConfig& cfg, int wid
     Image img = cl.render();
     r.build_ms = cl.timings().build_ms;
     r.kernel_ms = cl.timings().kernel_ms;
+    r.launches = cl.timings().launches;
+    r.host_timed_launches = cl.timings().host_timed_launches;
     r.cmp = compare_images(img, render_reference(scene, width, height, scene.recursion_depth));
     r.pass = r.cmp.nan_inf == 0 && r.cmp.percent_off_by_gt1() <= 0.05;
   } catch (const cl::Error& e) {

@@ -14,6 +14,7 @@ struct SelfTestResult {
   std::string error;  // build/run failure, empty when it ran
   Comparison cmp;
   double build_ms = 0, kernel_ms = 0;
+  int launches = 0, host_timed_launches = 0;  // launch_timing.hpp
 };
 
 // Pass: ran, no NaN/Inf pixel, at most 0.05% of pixels off by more than one

@@ -8,6 +8,7 @@
 
 #include "../kernels/clrt_layout.h"
 #include "error.hpp"
+#include "launch_timing.hpp"
 #include "plot.hpp"
 #include "reference.hpp"
 #include "timer.hpp"
@@ -63,20 +64,21 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<DeviceInfo
       BenchSettings b = s.bench;
       b.depth = d;
       b.reference = false;
+      b.peak = false;  // a property of the device, not of the depth: `clrt bench` measures it
       SweepRow row;
       row.device = devices[k].name;
       row.depth = d;
       row.bench = run_bench(scene, {devices[k]}, cfg, b);
       row.reference_ms = ref_ms;
-      row.bench.reference_ms = ref_ms;
-      if (row.bench.kernel_ms_median > 0) row.bench.speedup_vs_reference = ref_ms / row.bench.kernel_ms_median;
+      row.bench.reference = summarize({ref_ms});
+      if (row.bench.frame.median > 0) row.bench.speedup_vs_reference = ref_ms / row.bench.frame.median;
       row.error = compare_images(row.bench.image, ref);
       if (previous.count(int(k))) {
         row.change = compare_images(row.bench.image, previous[int(k)]);
-        row.kernel_ms_delta = row.bench.kernel_ms_median - previous_ms[int(k)];
+        row.kernel_ms_delta = row.bench.kernel.median - previous_ms[int(k)];
       }
       previous[int(k)] = std::move(row.bench.image);
-      previous_ms[int(k)] = row.bench.kernel_ms_median;
+      previous_ms[int(k)] = row.bench.kernel.median;
       row.bench.image = Image();
       rows.push_back(std::move(row));
       ++done;
@@ -88,7 +90,8 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<DeviceInfo
 
 std::string sweep_csv(const std::vector<SweepRow>& rows) {
   std::ostringstream o;
-  o << "device,depth,kernel_ms_median,kernel_ms_min,kernel_ms_max,kernel_ms_delta,build_warm_ms,upload_ms,"
+  o << "device,depth,kernel_ms_median,kernel_ms_min,kernel_ms_max,kernel_ms_mean,kernel_ms_sd,kernel_n,"
+       "kernel_time_source,kernel_ms_delta,frame_ms_median,frame_ms_mean,frame_ms_sd,build_warm_ms,upload_ms,"
        "download_ms,rays_primary,rays_shadow,rays_reflection,rays_total,sphere_tests,mrays_per_s,"
        "ns_per_sphere_test,gflops,reference_ms,speedup_vs_reference,omp_ms_median,opencl_speedup_vs_omp,"
        "err_pixels_differ,err_off_by_gt1,err_max_abs_8bit,err_rmse_8bit,err_hit_flips,err_shadow_flips,"
@@ -98,11 +101,13 @@ std::string sweep_csv(const std::vector<SweepRow>& rows) {
     std::string dev = r.device;
     for (auto& c : dev)
       if (c == ',' || c == '"') c = ' ';
-    o << dev << ',' << r.depth << ',' << b.kernel_ms_median << ',' << b.kernel_ms_min << ',' << b.kernel_ms_max << ','
-      << r.kernel_ms_delta << ',' << b.build_warm_ms << ',' << b.upload_ms << ',' << b.download_ms << ','
+    o << dev << ',' << r.depth << ',' << b.kernel.median << ',' << b.kernel.min << ',' << b.kernel.max << ','
+      << b.kernel.mean << ',' << b.kernel.sd << ',' << b.kernel.n << ',' << b.kernel_time_source() << ','
+      << r.kernel_ms_delta << ',' << b.frame.median << ',' << b.frame.mean << ',' << b.frame.sd << ','
+      << b.build_warm.median << ',' << b.upload.median << ',' << b.download.median << ','
       << b.rays.primary << ',' << b.rays.shadow << ',' << b.rays.reflection << ',' << b.rays.total() << ','
       << b.rays.sphere_tests << ',' << b.mrays_per_s << ',' << b.ns_per_sphere_test << ',' << b.gflops << ','
-      << r.reference_ms << ',' << b.speedup_vs_reference << ',' << b.omp_ms_median << ',' << b.opencl_speedup_vs_omp
+      << r.reference_ms << ',' << b.speedup_vs_reference << ',' << b.omp.median << ',' << b.speedup_vs_omp.median
       << ',' << r.error.differ << ',' << r.error.off_by_gt1 << ',' << r.error.max_abs_8bit << ',' << r.error.rmse_8bit
       << ',' << r.error.hit_flips << ',' << r.error.shadow_flips << ',' << r.error.nan_inf << ',' << r.change.differ
       << ',' << r.change.rmse_8bit << ',' << r.change.max_abs_8bit << '\n';
@@ -116,10 +121,16 @@ void print_sweep(const std::vector<SweepRow>& rows) {
   for (const auto& r : rows) {
     const BenchResult& b = r.bench;
     std::printf("%-5d %10.2f %+9.2f %12llu %9.1f %9.1f %8.1fx %8zu %7zu %8.4f %9zu %9.4f  %s\n", r.depth,
-                b.kernel_ms_median, r.kernel_ms_delta, (unsigned long long)b.rays.total(), b.mrays_per_s,
+                b.kernel.median, r.kernel_ms_delta, (unsigned long long)b.rays.total(), b.mrays_per_s,
                 r.reference_ms, b.speedup_vs_reference, r.error.differ, r.error.off_by_gt1, r.error.rmse_8bit,
                 r.change.differ, r.change.rmse_8bit, r.device.c_str());
   }
+  for (const auto& r : rows)
+    if (r.bench.host_timed_launches) {
+      std::printf("kernel_ms of %s%s\n", r.device.c_str(),
+                  time_source_note(r.bench.host_timed_launches, r.bench.launches).c_str());
+      break;
+    }
 }
 
 std::string plot_sweep(const std::vector<SweepRow>& rows, const std::string& path, const std::string& title) {
@@ -131,7 +142,7 @@ std::string plot_sweep(const std::vector<SweepRow>& rows, const std::string& pat
     t.name = "OpenCL kernel, " + r.device;
     t.lines = true;
     t.x.push_back(r.depth);
-    t.y.push_back(r.bench.kernel_ms_median);
+    t.y.push_back(r.bench.kernel.median);
     Series& n = rays[r.device];
     n.name = "rays traced, " + r.device;
     n.lines = true;

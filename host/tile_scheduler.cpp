@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "cl_renderer.hpp"
+#include "launch_timing.hpp"
 #include "timer.hpp"
 
 namespace clrt {
@@ -65,7 +66,9 @@ void run_worker(ClRenderer& r, BandQueue& queue, Image& img, const TilePolicy& p
   int y0 = 0, n = 0;
   while (queue.take(rows, policy.band_rows == 0, y0, n)) {
     auto t0 = std::chrono::steady_clock::now();
-    double ms = r.render_tile(0, y0, W, n, img);
+    const LaunchTime launch = r.render_tile(0, y0, W, n, img);
+    const double ms = launch.ms;
+    share.host_timed_launches += !launch.from_events;
     share.busy_ms += ms_since(t0);
     share.kernel_ms += ms;
     share.max_launch_ms = std::max(share.max_launch_ms, ms);
@@ -90,9 +93,9 @@ void print_shares(const std::vector<DeviceShare>& shares) {
   for (const auto& s : shares) total += s.rows;
   for (size_t i = 0; i < shares.size(); ++i) {
     const auto& s = shares[i];
-    std::printf("  device %zu %-48.48s %4d tiles, %6lld rows (%5.1f%%), kernel %9.2f ms, busy %9.2f ms, longest launch %8.2f ms\n",
+    std::printf("  device %zu %-48.48s %4d tiles, %6lld rows (%5.1f%%), kernel %9.2f ms, busy %9.2f ms, longest launch %8.2f ms%s\n",
                 i, s.device.c_str(), s.tiles, s.rows, total ? 100.0 * s.rows / total : 0.0, s.kernel_ms, s.busy_ms,
-                s.max_launch_ms);
+                s.max_launch_ms, time_source_note(s.host_timed_launches, s.tiles).c_str());
   }
 }
 

@@ -17,10 +17,11 @@ TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl]") {
   AccuracySettings s;
   s.width = s.height = 200;
   s.repeat = 3;
+  s.device = clrt_test::test_device_spec();
   std::vector<NamedScene> scenes{{"cgfs-demo.json", clrt_test::load("scenes/cgfs-demo.json")}};
   auto rows = measure_accuracy(scenes, s);
   REQUIRE(rows.size() == all_precisions().size());
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   const AccuracyRow *naive = nullptr, *robust = nullptr;
   for (const auto& r : rows) {
     INFO(r.variant);

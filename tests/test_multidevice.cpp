@@ -56,7 +56,7 @@ TEST_CASE("two PoCL devices render the same bytes as one", "[opencl][multidevice
 }
 
 TEST_CASE("two contexts on one device share a frame exactly", "[opencl][multidevice]") {
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-camera.json");
   ClRenderer one(dev, KernelConfig{});
   one.prepare(s, 200, 150, 3);
@@ -74,7 +74,7 @@ TEST_CASE("two contexts on one device share a frame exactly", "[opencl][multidev
 }
 
 TEST_CASE("a launch-time limit splits one device's frame into bands", "[opencl]") {
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
   ClRenderer whole(dev, KernelConfig{});
   whole.set_tile_policy(TilePolicy{0, 0});  // no limit on any device type

@@ -17,7 +17,7 @@ using namespace clrt;
 using clrt_test::shipped_scenes;
 
 TEST_CASE("kernel and host agree on the shared layouts", "[opencl][layout]") {
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   cl::Context ctx(dev.device);
   cl::CommandQueue q(ctx, dev.device);
   cl::Program prog = build_program(ctx, dev, load_kernel_source("layout_probe.cl"), "-cl-std=CL1.2");
@@ -51,7 +51,7 @@ TEST_CASE("OpenCL (robust float32) matches the reference on every shipped scene"
   // only pixels allowed to differ by more than rounding. Pixels off by one
   // level come from float rounding of values near .5 and are not limited.
   KernelConfig cfg;  // robust, specialized
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   ClRenderer cl(dev, cfg);
   for (const auto& path : shipped_scenes()) {
     Scene s = load_scene(path);
@@ -71,7 +71,7 @@ TEST_CASE("OpenCL (robust float32) matches the reference on every shipped scene"
 }
 
 TEST_CASE("OpenCL fp64 reproduces the reference", "[opencl]") {
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   if (!dev.fp64) {
     WARN("device has no cl_khr_fp64; skipped");
     return;
@@ -98,18 +98,18 @@ TEST_CASE("OpenCL fp64 reproduces the reference", "[opencl]") {
 TEST_CASE("naive float32 shows the floor acne the robust mode removes", "[opencl]") {
   // Documents the measured fact the robust mode exists for: the book's
   // formulas in float32 self-hit the radius-5000 floor on ~2% of pixels.
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
   Image ref = render_reference(s, 600, 600, 3);
   KernelConfig naive;
   naive.precision = Precision::Naive;
-  Comparison c = compare_images(render_opencl(s, 600, 600, 3, "", naive), ref);
+  Comparison c = compare_images(render_opencl(s, 600, 600, 3, clrt_test::test_device_spec(), naive), ref);
   CHECK(c.percent_off_by_gt1() > 0.5);
 }
 
 TEST_CASE("tiled rendering equals the single-launch image", "[opencl]") {
   Scene s = clrt_test::load("scenes/cgfs-camera.json");
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   ClRenderer whole(dev, KernelConfig{});
   whole.prepare(s, 203, 157, 3);  // odd sizes on purpose
   Image a = whole.render();

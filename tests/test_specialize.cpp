@@ -50,7 +50,7 @@ constexpr int kW = 157, kH = 118;
 }  // namespace
 
 TEST_CASE("specialized and generic kernels give identical images on every scene", "[opencl][specialize]") {
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   KernelConfig generic;
   generic.specialize = false;
   KernelConfig special;  // default: specialized, 8 lanes
@@ -64,7 +64,7 @@ TEST_CASE("specialized and generic kernels give identical images on every scene"
 }
 
 TEST_CASE("every precision and lane count gives the generic kernel's image", "[opencl][specialize]") {
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
   for (Precision p : {Precision::Naive, Precision::Stable, Precision::Robust, Precision::Fp64}) {
     if (p == Precision::Fp64 && !dev.fp64) continue;
@@ -87,7 +87,7 @@ TEST_CASE("program cache: a second build is a hit and renders the same image", "
   clrt_test::TempDir dir;
   std::string old = std::getenv("CLRT_CACHE_DIR") ? std::getenv("CLRT_CACHE_DIR") : "";
   ::setenv("CLRT_CACHE_DIR", dir.path().c_str(), 1);
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
   KernelConfig cfg;
   RenderTimings t1, t2, t3, t4;
@@ -139,7 +139,7 @@ TEST_CASE("program cache key covers source, options and device", "[cache]") {
 }
 
 TEST_CASE("ray counters match counts derived by hand", "[opencl][rays]") {
-  DeviceInfo dev = select_device("");
+  DeviceInfo dev = clrt_test::test_device();
   const int W = 37, H = 11;  // 37: not a multiple of the lane count
   const uint64_t px = uint64_t(W) * H;
   auto counts = [&](const Scene& s, int depth, bool specialize) {
@@ -196,6 +196,26 @@ TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench]") {
     CHECK(j.contains(k));
   CHECK(j["kernel_ms"].size() == 2);
   CHECK(j["build_warm_cached"] == true);
+  // Every timed figure comes with N, median, mean, sd, min and max.
+  for (const char* k : {"kernel", "frame", "download", "omp", "speedup_vs_omp", "kernel_speedup_vs_omp", "build_cold",
+                        "build_warm", "upload", "reference"}) {
+    INFO(k);
+    REQUIRE(j.contains(k));
+    for (const char* f : {"n", "median", "mean", "sd", "min", "max"}) CHECK(j[k].contains(f));
+    CHECK(j[k]["min"].get<double>() <= j[k]["median"].get<double>());
+    CHECK(j[k]["median"].get<double>() <= j[k]["max"].get<double>());
+  }
+  CHECK(j["frame"]["n"] == 2);
+  CHECK(j["omp"]["n"] == 2);
+  CHECK(j["build_cold"]["n"] == 2);  // min(--repeat, 3)
+  // The headline ratio is frame against frame: the same work on both sides.
+  CHECK(j["opencl_speedup_vs_omp"] == j["speedup_vs_omp"]["median"]);
+  CHECK(j["kernel"]["median"].get<double>() <= j["frame"]["median"].get<double>());
+  // PoCL's events are plausible; the peak is measured, not assumed.
+  CHECK(j["kernel_time_source"] == "events");
+  REQUIRE(j["peaks"].size() == 1);
+  CHECK(j["peaks"][0]["measured"] == true);
+  CHECK(j["peak_gflops"].get<double>() > 0);
   // Every pixel shoots one primary ray; the totals add up.
   CHECK(j["rays_primary"] == 40 * 30);
   CHECK(j["rays_total"].get<uint64_t>() ==

@@ -2,6 +2,8 @@
 // default float32 variant passes every stable-suite case, naive fails where
 // the floor breaks it, fp64 passes everything it runs.
 #include <catch2/catch.hpp>
+
+#include "test_util.hpp"
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
@@ -69,8 +71,8 @@ TEST_CASE("every variant meets its expectations on the whole suite (160x120)", "
   // 1.9% to 27% off by > 1, far beyond 0.05%, so this is not marginal: it
   // shows the verdict can fail); fp64 must pass every stable case.
   const auto cases = stability_suite();
-  DeviceInfo dev = select_device("");
-  const auto results = run_stability(cases, all_precisions(), 160, 120, "", KernelConfig{});
+  DeviceInfo dev = clrt_test::test_device();
+  const auto results = run_stability(cases, all_precisions(), 160, 120, clrt_test::test_device_spec(), KernelConfig{});
   REQUIRE(results.size() == cases.size() * all_precisions().size());
   size_t naive_floor_fails = 0;
   for (const auto& r : results) {

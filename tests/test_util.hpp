@@ -1,16 +1,27 @@
 // test_util.hpp - shared helpers for the test suite.
 #pragma once
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "device.hpp"
 #include "scene.hpp"
 
 namespace clrt_test {
 
 inline std::string source_path(const std::string& rel) { return std::string(CLRT_SOURCE_DIR) + "/" + rel; }
 inline clrt::Scene load(const std::string& rel) { return clrt::load_scene(source_path(rel)); }
+
+// The device the OpenCL tests run on: $CLRT_TEST_DEVICE (a --device spec,
+// e.g. an index or "rusticl"; tests/every_device.sh sets it to run them on
+// every device `clrt devices` lists), else the default device.
+inline std::string test_device_spec() {
+  const char* spec = std::getenv("CLRT_TEST_DEVICE");
+  return spec ? spec : "";
+}
+inline clrt::DeviceInfo test_device() { return clrt::select_device(test_device_spec()); }
 
 // Every scenes/*.json of the source tree, sorted.
 inline std::vector<std::string> shipped_scenes() {

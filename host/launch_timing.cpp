@@ -1,0 +1,36 @@
+// launch_timing.cpp - the plausibility rule for profiling-event times.
+#include "launch_timing.hpp"
+
+#include <cmath>
+
+namespace clrt {
+
+bool event_time_plausible(double event_ms, double wall_ms) {
+  if (!std::isfinite(event_ms) || event_ms <= 0) return false;
+  if (event_ms > wall_ms * kEventMaxOverWall + kEventSlackMs) return false;
+  if (wall_ms >= kEventMinCheckedWallMs && event_ms < kEventMinFractionOfWall * wall_ms) return false;
+  return true;
+}
+
+LaunchTime launch_time(double event_ms, double wall_ms) {
+  LaunchTime t;
+  t.event_ms = event_ms;
+  t.wall_ms = wall_ms;
+  t.from_events = event_time_plausible(event_ms, wall_ms);
+  t.ms = t.from_events ? event_ms : wall_ms;
+  return t;
+}
+
+std::string time_source(int host_timed, int launches) {
+  if (host_timed <= 0) return "events";
+  return host_timed >= launches ? "host" : "mixed";
+}
+
+std::string time_source_note(int host_timed, int launches) {
+  if (host_timed <= 0) return "";
+  if (host_timed >= launches) return " (host wall clock: the device's profiling events were implausible)";
+  return " (" + std::to_string(host_timed) + " of " + std::to_string(launches) +
+         " launches timed by the host wall clock: implausible profiling events)";
+}
+
+}  // namespace clrt

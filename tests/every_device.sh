@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# every_device.sh CLRT CLRT_TESTS - runs the OpenCL tests that compare with
+# the reference on every device `clrt devices` lists besides the default one
+# (the plain test run covers that), one run per device with CLRT_TEST_DEVICE
+# set to its index. Multi-device tests stay on the default device: they pick
+# their devices themselves. Registered with CTest (CMakeLists.txt).
+set -euo pipefail
+clrt=$1 tests=$2
+# Device rows start with the index; the default device's index carries a '*'.
+mapfile -t others < <("$clrt" devices | awk '$1 ~ /^[0-9]+$/ {print $1}')
+if [ ${#others[@]} -eq 0 ]; then
+  echo "every_device: only the default device is installed; nothing more to run"
+  exit 0
+fi
+status=0
+for index in "${others[@]}"; do
+  echo "== OpenCL tests on device $index: $("$clrt" devices | awk -v i="$index" '$1 == i {$1=""; print}' | cut -c1-90)"
+  CLRT_TEST_DEVICE=$index "$tests" '[opencl]~[multidevice]' || status=1
+done
+exit $status
