@@ -264,13 +264,13 @@ void print_bench(const BenchResult& r) {
       std::printf("  peak %zu       unknown: %s\n", i, p.note.c_str());
   }
   if (r.reference.n > 0)
-    std::printf("reference      %s (scalar double, 1 thread): clrt frame is %.2fx faster\n",
+    std::printf("reference      %s (scalar double, 1 thread): speedup %.2fx (reference / clrt frame)\n",
                 format_stats(r.reference, "ms", 1).c_str(), r.speedup_vs_reference);
   if (r.omp.n > 0) {
     std::printf("OpenMP float   %s (%d threads, -O3 -march=native)\n", format_stats(r.omp).c_str(), r.omp_threads);
-    std::printf("vs OpenMP      clrt frame is %s faster (OpenMP frame / clrt frame, per round)\n",
+    std::printf("speedup        %s (OpenMP frame / clrt frame, per round; > 1: clrt is faster)\n",
                 format_stats(r.speedup_vs_omp, "x").c_str());
-    std::printf("  kernel only  %s (OpenMP frame / clrt kernel time%s)\n",
+    std::printf("  kernel only  %s (OpenMP frame / clrt kernel time%s; not like for like)\n",
                 format_stats(r.kernel_speedup_vs_omp, "x").c_str(), r.host_timed_launches ? ", host clock" : "");
   }
 }

@@ -12,14 +12,6 @@
 namespace clrt {
 namespace {
 
-double event_ms(const cl::Event& ev) {
-  // As doubles: a driver that reports END before START gives a negative
-  // (implausible) time instead of a wrapped-around huge one.
-  double start = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_START>());
-  double end = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_END>());
-  return (end - start) * 1e-6;
-}
-
 template <class T>
 cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::vector<T>& v) {
   // Zero-sized buffers are invalid in OpenCL: keep at least one element.
@@ -96,12 +88,7 @@ LaunchTime ClRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
   // Pad the global size to a multiple of the local size; the kernel ignores
   // work-items outside the tile.
   cl::NDRange global((gw + lx - 1) / lx * lx, (h + ly - 1) / ly * ly), local(lx, ly);
-  cl::Event ev;
-  const auto launched = Clock::now();
-  queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, global, local, nullptr, &ev);
-  ev.wait();
-  const double wall_ms = ms_since(launched);
-  const LaunchTime time = launch_time(event_ms(ev), wall_ms);
+  const LaunchTime time = run_timed(queue_, kernel_, global, local);
 
   auto t0 = std::chrono::steady_clock::now();
   std::vector<float> rgb(n * 3);

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "timer.hpp"
+
 namespace clrt {
 
 bool event_time_plausible(double event_ms, double wall_ms) {
@@ -19,6 +21,20 @@ LaunchTime launch_time(double event_ms, double wall_ms) {
   t.from_events = event_time_plausible(event_ms, wall_ms);
   t.ms = t.from_events ? event_ms : wall_ms;
   return t;
+}
+
+LaunchTime run_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::NDRange& global,
+                     const cl::NDRange& local) {
+  cl::Event ev;
+  const auto launched = Clock::now();
+  queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &ev);
+  ev.wait();
+  const double wall_ms = ms_since(launched);
+  // As doubles: a driver that reports END before START gives a negative
+  // (implausible) time instead of a wrapped-around huge one.
+  const double start = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_START>());
+  const double end = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_END>());
+  return launch_time((end - start) * 1e-6, wall_ms);
 }
 
 std::string time_source(int host_timed, int launches) {

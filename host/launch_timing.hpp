@@ -8,6 +8,8 @@
 #pragma once
 #include <string>
 
+#include "cl.hpp"
+
 namespace clrt {
 
 // An event time is plausible when it is positive, no longer than the host
@@ -28,6 +30,12 @@ struct LaunchTime {
 };
 
 LaunchTime launch_time(double event_ms, double wall_ms);
+
+// Enqueues `kernel` on `queue` (created with CL_QUEUE_PROFILING_ENABLE),
+// waits for it, and times it both ways: every launch clrt times goes through
+// here.
+LaunchTime run_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::NDRange& global,
+                     const cl::NDRange& local);
 
 // Where a total over `launches` launches came from, `host_timed` of which
 // used the host clock: "events", "host" or "mixed" (JSON/CSV value).

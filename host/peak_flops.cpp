@@ -7,7 +7,6 @@
 #include "kernel_source.hpp"
 #include "launch_timing.hpp"
 #include "program.hpp"
-#include "timer.hpp"
 
 namespace clrt {
 namespace {
@@ -35,14 +34,7 @@ PeakFlops measure_peak_flops(const DeviceInfo& dev, int repeat) {
     k.setArg(2, 0.001f);
     auto launch = [&](int iterations) {
       k.setArg(3, cl_int(iterations));
-      cl::Event ev;
-      const auto t0 = Clock::now();
-      q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(items), cl::NullRange, nullptr, &ev);
-      ev.wait();
-      const double wall = ms_since(t0);
-      const double start = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_START>());
-      const double end = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_END>());
-      return launch_time((end - start) * 1e-6, wall);
+      return run_timed(q, k, cl::NDRange(items), cl::NullRange);
     };
     // Calibrate: grow the iteration count until a launch takes >= 20 ms.
     int iterations = 64;

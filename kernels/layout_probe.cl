@@ -2,9 +2,16 @@
  * (sizes and member offsets), compared with the host's in tests/. */
 #include "clrt_layout.h"
 
-#define OFF(T, m) ((int)(size_t)(&((T*)0)->m))
+/* Offsets as differences of two addresses inside one real object: the
+ * null-pointer form ((T*)0)->m is undefined, and Mesa rusticl's compiler
+ * folds it to values one less than the true offsets. */
+#define OFF(T, m) ((int)((__private char*)&probe_##T.m - (__private char*)&probe_##T))
 
 __kernel void layout_probe(__global int* out) {
+  clrt_sphere probe_clrt_sphere;
+  clrt_light probe_clrt_light;
+  clrt_params probe_clrt_params;
+  clrt_ray_counts probe_clrt_ray_counts;
   int i = 0;
   out[i++] = (int)sizeof(clrt_sphere);
   out[i++] = OFF(clrt_sphere, radius);
