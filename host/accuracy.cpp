@@ -166,7 +166,7 @@ std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySe
     arr.push_back(j);
   }
   out["rows"] = arr;
-  return out.dump(2);
+  return out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path) {

@@ -20,6 +20,10 @@ int kernel_lanes(const KernelConfig& cfg) {
   return cfg.lanes;
 }
 
+bool unroll_counts(const Scene& scene) {
+  return scene.spheres.size() <= kMaxUnrolledSpheres && scene.lights.size() <= kMaxUnrolledLights;
+}
+
 std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth, bool device_has_fp64) {
   if (cfg.precision == Precision::Fp64 && !device_has_fp64)
     throw UserError("precision fp64 needs a device with cl_khr_fp64; this device has none (use --precision robust)");
@@ -42,12 +46,17 @@ std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth
     // With no reflective sphere the depth never matters: fold it to 0 so one
     // program serves every depth.
     int d = refl ? depth : 0;
-    o += " -DCLRT_SPECIALIZED -DCLRT_DEPTH=" + std::to_string(d) +
-         " -DCLRT_N_SPHERES=" + std::to_string(scene.spheres.size()) +
-         " -DCLRT_N_LIGHTS=" + std::to_string(scene.lights.size()) + " -DCLRT_HAS_AMBIENT=" + (amb ? "1" : "0") +
+    o += " -DCLRT_SPECIALIZED -DCLRT_DEPTH=" + std::to_string(d) + " -DCLRT_HAS_AMBIENT=" + (amb ? "1" : "0") +
          " -DCLRT_HAS_POINT=" + (pt ? "1" : "0") + " -DCLRT_HAS_DIRECTIONAL=" + (dir ? "1" : "0") +
          " -DCLRT_HAS_SPECULAR=" + (spec ? "1" : "0") + " -DCLRT_HAS_REFLECTIVE=" + (refl && d > 0 ? "1" : "0");
-    if (!scene.lights.empty()) {
+    // Constant counts (and so unrolled loops and per-light types) only for
+    // small scenes: the unrolled code, and with it the build time, grows with
+    // every sphere and light (docs/performance.md, "Bounded specialization").
+    const bool unroll = unroll_counts(scene);
+    if (unroll)
+      o += " -DCLRT_N_SPHERES=" + std::to_string(scene.spheres.size()) +
+           " -DCLRT_N_LIGHTS=" + std::to_string(scene.lights.size());
+    if (unroll && !scene.lights.empty()) {
       o += " -DCLRT_LIGHT_TYPES=";
       for (size_t i = 0; i < scene.lights.size(); ++i) {
         const LightType t = scene.lights[i].type;

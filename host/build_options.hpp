@@ -36,4 +36,12 @@ int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev);
 // Throws UserError when fp64 is asked of a device without cl_khr_fp64.
 std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth, bool device_has_fp64);
 
+// A specialized build makes the sphere and light counts (and each light's
+// type) compile-time constants, and unrolls their loops, only up to these
+// counts; past them it keeps the other specializations and loops over the
+// scene's buffers, so build time stays bounded for any scene
+// (docs/performance.md, "Bounded specialization").
+constexpr size_t kMaxUnrolledSpheres = 16, kMaxUnrolledLights = 16;
+bool unroll_counts(const Scene& scene);
+
 }  // namespace clrt

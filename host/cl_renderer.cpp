@@ -40,6 +40,7 @@ void ClRenderer::prepare(const Scene& scene, int width, int height, int depth) {
     size_t pm = kernel_.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(dev_.device);
     size_t max_wg = kernel_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(dev_.device);
     default_local_x_ = int(std::max<size_t>(1, std::min(pm, max_wg)));
+    max_work_group_ = max_wg;
     options_ = opts;
     timings_.build_ms = bs.ms;
     timings_.build_cached = bs.cached;
@@ -47,6 +48,7 @@ void ClRenderer::prepare(const Scene& scene, int width, int height, int depth) {
     timings_.build_ms = 0;
     timings_.build_cached = true;
   }
+  check_local_size();
   auto t0 = std::chrono::steady_clock::now();
   SceneData data = pack_scene(scene, cfg_.precision, width, height, depth);
   params_ = upload(ctx_, queue_, std::vector<clrt_params>{data.params});
@@ -55,6 +57,20 @@ void ClRenderer::prepare(const Scene& scene, int width, int height, int depth) {
   timings_.upload_ms = ms_since(t0);
   width_ = width;
   height_ = height;
+}
+
+void ClRenderer::check_local_size() const {
+  if (local_x_ <= 0 && local_y_ <= 0) return;
+  const size_t lx = size_t(std::max(1, local_x_)), ly = size_t(std::max(1, local_y_));
+  const auto item_sizes = dev_.device.getInfo<CL_DEVICE_MAX_WORK_ITEM_SIZES>();
+  const bool fits = lx <= max_work_group_ && ly <= max_work_group_ && lx * ly <= max_work_group_ &&
+                    (item_sizes.size() < 2 || (lx <= item_sizes[0] && ly <= item_sizes[1]));
+  if (!fits)
+    throw UserError("--local " + std::to_string(lx) + "x" + std::to_string(ly) + ": exceeds what " + dev_.name +
+                    " allows for this kernel (at most " + std::to_string(max_work_group_) + " work-items per group" +
+                    (item_sizes.size() >= 2 ? ", " + std::to_string(item_sizes[0]) + "x" + std::to_string(item_sizes[1])
+                                            : std::string()) +
+                    " per dimension)");
 }
 
 void ClRenderer::ensure_tile_buffers(size_t pixels) {
@@ -79,15 +95,19 @@ LaunchTime ClRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
   kernel_.setArg(8, cl_int(w));
   kernel_.setArg(9, cl_int(h));
   // Each work-item shades kernel_lanes(cfg_) adjacent pixels of a row.
-  const int lanes = kernel_lanes(cfg_), gw = (w + lanes - 1) / lanes;
+  const size_t lanes = size_t(kernel_lanes(cfg_)), gw = (size_t(w) + lanes - 1) / lanes;
   // Always an explicit local size: with NullRange the implementation picks
   // one from the global size, which changes with every band height, and
   // PoCL compiles a new work-group function for each (measured: 1.2 s per
   // 640x480 frame of 5 ms bands instead of 20 ms; docs/performance.md).
-  const int lx = local_x_ > 0 ? local_x_ : default_local_x_, ly = local_y_ > 0 ? local_y_ : 1;
-  // Pad the global size to a multiple of the local size; the kernel ignores
-  // work-items outside the tile.
-  cl::NDRange global((gw + lx - 1) / lx * lx, (h + ly - 1) / ly * ly), local(lx, ly);
+  // (check_local_size() bounded both by the device's limits.)
+  const size_t lx = size_t(local_x_ > 0 ? local_x_ : default_local_x_), ly = size_t(local_y_ > 0 ? local_y_ : 1);
+  // Pad the global size to a multiple of the local size, in size_t (no
+  // overflow for any tile and local size the checks let through); the
+  // kernel ignores work-items outside the tile. Every pixel must be covered.
+  const size_t global_x = (gw + lx - 1) / lx * lx, global_y = (size_t(h) + ly - 1) / ly * ly;
+  if (global_x < gw || global_y < size_t(h)) throw std::logic_error("launch does not cover the tile");
+  cl::NDRange global(global_x, global_y), local(lx, ly);
   const LaunchTime time = run_timed(queue_, kernel_, global, local);
 
   auto t0 = std::chrono::steady_clock::now();

@@ -65,6 +65,8 @@ class ClRenderer {
 
  private:
   void ensure_tile_buffers(size_t pixels);
+  // UserError when the --local size does not fit the device and kernel.
+  void check_local_size() const;
 
   DeviceInfo dev_;
   KernelConfig cfg_;
@@ -80,6 +82,7 @@ class ClRenderer {
   DeviceShare share_;
   int local_x_ = 0, local_y_ = 0;
   int default_local_x_ = 1;  // set when the kernel is built
+  size_t max_work_group_ = 1;  // CL_KERNEL_WORK_GROUP_SIZE of the built kernel
   RenderTimings timings_;
   RayCounts counts_;
 };

@@ -84,7 +84,7 @@ void add_compare_command(CLI::App& app) {
         j["fail_max"] = limits->fail_max >= 0 ? nlohmann::json(limits->fail_max) : nlohmann::json();
         j["verdict"] = verdict.pass ? "pass" : "fail";
       }
-      std::printf("%s\n", j.dump(2).c_str());
+      std::printf("%s\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     } else {
       std::printf("scene          %s  %dx%d  depth %d  precision %s\n", o->scene_path.c_str(), o->width, o->height,
                   depth, classified ? o->precision.c_str() : "-");
@@ -103,9 +103,10 @@ void add_compare_command(CLI::App& app) {
       std::printf("RMSE / PSNR    8-bit %.4f / %s dB, float %.4f / %s dB\n", c.rmse_8bit,
                   format_psnr(c.psnr_8bit).c_str(), c.rmse_float, format_psnr(c.psnr_float).c_str());
       if (classified)
-        std::printf("flips          hit %zu, shadow %zu, NaN/Inf pixels %zu\n", c.hit_flips, c.shadow_flips, c.nan_inf);
+        std::printf("flips          hit %zu, shadow %zu\n", c.hit_flips, c.shadow_flips);
       else
-        std::printf("flips          n/a (an image file has no hit/shadow data), NaN/Inf pixels %zu\n", c.nan_inf);
+        std::printf("flips          n/a (an image file has no hit/shadow data)\n");
+      std::printf("NaN/Inf pixels %zu (reference: %zu)\n", c.nan_inf, c.nan_inf_reference);
       if (classified)
         std::printf("time           reference %.1f ms; opencl kernel %.2f ms%s, build %.1f ms%s, render total %.1f ms\n",
                     ref_run.wall_ms, cl_run.cl.kernel_ms,

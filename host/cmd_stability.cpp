@@ -75,7 +75,7 @@ void add_stability_command(CLI::App& app) {
                             {"results", rows},
                             {"summary", summary},
                             {"unmet_expectations", unmet}};
-      std::printf("%s\n", out.dump(2).c_str());
+      std::printf("%s\n", out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     } else {
       std::printf("device %s, %dx%d; pass = at most %.2f%% of pixels off by > 1 level and %zu NaN/Inf pixels\n",
                   device.c_str(), o->width, o->height, kStabilityMaxPercentOffByGt1, kStabilityMaxNanPixels);

@@ -34,7 +34,10 @@ void add_sweep_command(CLI::App& app) {
     if (*repeat < 1 || *repeat > 1000) throw UserError("--repeat must be in [1, 1000]");
     SweepSettings s;
     parse_depth_range(*depths, s.depth_from, s.depth_to);
-    if (!plot->empty()) check_output_format(*plot);
+    if (!plot->empty()) {  // both plots, before measuring
+      check_output_format(*plot);
+      check_output_format(rays_plot_path(*plot));
+    }
     if (!csv->empty()) check_writable(*csv, "CSV");  // fail before measuring
     Scene scene = load_scene(o->scene_path);
     s.bench.width = o->width;

@@ -23,10 +23,11 @@ Comparison compare_images(const Image& test, const Image& ref) {
   double se8 = 0, sef = 0;
   for (size_t p = 0; p < c.pixels; ++p) {
     int maxd = 0;
-    bool bad = false;
+    bool bad = false, bad_ref = false;
     for (int k = 0; k < 3; ++k) {
       double tv = test.rgb[p * 3 + k], rv = ref.rgb[p * 3 + k];
       bad |= !std::isfinite(tv);
+      bad_ref |= !std::isfinite(rv);
       int d8 = std::abs(int(to_u8(tv)) - int(to_u8(rv)));
       maxd = std::max(maxd, d8);
       se8 += double(d8) * d8;
@@ -35,6 +36,7 @@ Comparison compare_images(const Image& test, const Image& ref) {
       c.max_abs_float = std::max(c.max_abs_float, std::fabs(df));
     }
     c.nan_inf += bad;
+    c.nan_inf_reference += bad_ref;
     if (maxd > c.max_abs_8bit) {
       c.worst_x = int(p % size_t(ref.width));
       c.worst_y = int(p / size_t(ref.width));
@@ -77,6 +79,7 @@ Verdict judge(const Comparison& c, const Thresholds& t) {
     fail(buf);
   }
   if (t.any() && c.nan_inf > 0) fail(std::to_string(c.nan_inf) + " NaN/Inf pixels");
+  if (t.any() && c.nan_inf_reference > 0) fail(std::to_string(c.nan_inf_reference) + " NaN/Inf pixels in the reference");
   return v;
 }
 

@@ -18,6 +18,7 @@ struct Comparison {
   double max_abs_float = 0;               // over colours clamped to [0, 255]
   double rmse_float = 0, psnr_float = 0;  // same, before rounding
   size_t nan_inf = 0;       // pixels of the tested image with a NaN/Inf channel
+  size_t nan_inf_reference = 0;  // the same in the reference image (the oracle must be finite too)
   size_t hit_flips = 0;     // primary ray hit a different sphere (or missed)
   size_t shadow_flips = 0;  // same sphere hit, but a light's visibility differs
   // The pixel with the largest 8-bit channel difference (the first such in

@@ -18,6 +18,7 @@ nlohmann::json comparison_json(const Comparison& c) {
           {"rmse_float", c.rmse_float},
           {"psnr_float", num(c.psnr_float)},
           {"nan_inf_pixels", c.nan_inf},
+          {"nan_inf_pixels_reference", c.nan_inf_reference},
           {"hit_flips", c.hit_flips},
           {"shadow_flips", c.shadow_flips}};
 }

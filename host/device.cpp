@@ -1,6 +1,11 @@
 // device.cpp - platform/device enumeration and selection by index or name.
 #include "device.hpp"
 
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
 #include <algorithm>
 #include <cctype>
 #include <sstream>
@@ -31,6 +36,28 @@ std::string trim(std::string s) {
 
 bool all_digits(const std::string& s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+}
+
+}  // namespace
+
+namespace {
+
+// PoCL keeps its kernel cache under $XDG_CACHE_HOME (else ~/.cache) and
+// exposes no device when it cannot create it, which would otherwise read as
+// "no OpenCL device". Names the cause when that is what happened.
+std::string cache_home_hint() {
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  const char* home = std::getenv("HOME");
+  std::string dir = xdg && *xdg ? xdg : (home && *home ? std::string(home) + "/.cache" : "");
+  if (dir.empty()) return "";
+  std::error_code ec;
+  std::filesystem::path p(dir);
+  while (!p.empty() && !std::filesystem::exists(p, ec)) p = p.parent_path();
+  if (p.empty() || std::filesystem::is_directory(p, ec)) {
+    if (::access(p.empty() ? "." : p.c_str(), W_OK) == 0) return "";
+  }
+  return std::string(" (") + (xdg && *xdg ? "XDG_CACHE_HOME=" : "the cache directory ") + dir +
+         " cannot be created or written, and PoCL needs it for its kernel cache)";
 }
 
 }  // namespace
@@ -76,7 +103,8 @@ std::vector<DeviceInfo> list_devices() {
       out.push_back(std::move(info));
     }
   }
-  if (out.empty()) throw DeviceError("no OpenCL device found on any platform; use --engine reference");
+  if (out.empty())
+    throw DeviceError("no OpenCL device found on any platform" + cache_home_hint() + "; use --engine reference");
   return out;
 }
 
@@ -97,8 +125,8 @@ std::vector<DeviceInfo> select_devices(const std::string& spec_in) {
   while (std::getline(ss, part, ',')) {
     bool found = false;
     if (all_digits(part)) {
-      size_t idx = std::stoul(part);
-      if (idx < all.size()) picked.push_back(all[idx]), found = true;
+      // Any index longer than 9 digits is out of range (and would overflow stoul).
+      if (part.size() <= 9 && std::stoul(part) < all.size()) picked.push_back(all[std::stoul(part)]), found = true;
     } else {
       for (auto& d : all) {
         if (lower(d.name).find(part) != std::string::npos || lower(d.type).find(part) != std::string::npos ||

@@ -1,7 +1,9 @@
 // image.cpp - quantization and atomic image output through OpenImageIO.
 #include "image.hpp"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+
 #include <cmath>
 #include <filesystem>
 
@@ -35,40 +37,61 @@ bool is_float_format(const std::string& path) {
   return ext == "exr" || ext == "hdr" || ext == "pfm";
 }
 
-namespace fs = std::filesystem;
+// The name whose extension picks the encoder: OUT itself, or "out.png" for
+// standard output and devices named without an extension (/dev/stdout).
+std::string format_name(const std::string& path) {
+  return extension_of(path).empty() && path != "" && (path == "-" || check_output(path).kind != OutputKind::File)
+             ? std::string("out.png")
+             : path;
+}
 
-// Writes `pixels` (either float or uint8 RGB) through a temp file + rename.
+[[noreturn]] void encode_failed(const std::string& path, std::string err) {
+  for (auto& c : err)
+    if (c == '\n') c = ' ';
+  throw UserError(path + ": cannot write output: " + (err.empty() ? std::string("unknown error") : err));
+}
+
+// Encodes `pixels` (float or uint8 RGB) in memory - or, for the few encoders
+// that can only write to a path, in a private scratch file - and returns the
+// file's bytes. Nothing is written to OUT here: write_output() does that.
+std::string encode(const std::string& path, int w, int h, OIIO::TypeDesc type, const void* data) {
+  const std::string name = format_name(path);
+  OIIO::ImageSpec spec(w, h, 3, type);
+  std::vector<unsigned char> buf;
+  OIIO::Filesystem::IOVecOutput memory(buf);
+  auto out = OIIO::ImageOutput::create(name);
+  if (!out) encode_failed(path, OIIO::geterror());
+  if (out->supports("ioproxy")) {
+    out = OIIO::ImageOutput::create(name, &memory);
+    if (!out) encode_failed(path, OIIO::geterror());
+    if (!(out->open(name, spec) && out->write_image(type, data) && out->close())) encode_failed(path, out->geterror());
+    return std::string(buf.begin(), buf.end());
+  }
+  ScratchFile scratch("out" + std::filesystem::path(name).extension().string());
+  if (!(out->open(scratch.path(), spec) && out->write_image(type, data) && out->close()))
+    encode_failed(path, out->geterror());
+  out.reset();
+  return scratch.read();
+}
+
 void write_pixels(const std::string& path, int w, int h, OIIO::TypeDesc type, const void* data) {
   check_output_format(path);
-  fs::path target(path);
-  fs::path tmp = temp_path_for(target);
-  std::error_code ec;
-  auto out = OIIO::ImageOutput::create(tmp.string());
-  if (!out) throw UserError(path + ": cannot write output: " + OIIO::geterror());
-  OIIO::ImageSpec spec(w, h, 3, type);
-  bool ok = out->open(tmp.string(), spec) && out->write_image(type, data) && out->close();
-  if (!ok) {
-    std::string err = out->geterror();
-    out.reset();
-    fs::remove(tmp, ec);
-    throw UserError(path + ": cannot write output: " + (err.empty() ? std::string("unknown error") : err));
-  }
-  out.reset();
-  commit_temp(tmp, path);
+  write_output(path, encode(path, w, h, type, data));
 }
 
 }  // namespace
 
 void check_output_format(const std::string& path) {
   if (path.empty()) throw UserError("output path is empty");
+  const OutputTarget target = check_output(path);
   const std::string ext = extension_of(path);
-  if (ext.empty()) throw UserError(path + ": output has no file extension (use .png, .ppm, .exr, ...)");
-  auto out = OIIO::ImageOutput::create(path);
+  if (ext.empty() && target.kind == OutputKind::File)
+    throw UserError(path + ": output has no file extension (use .png, .ppm, .exr, ...)");
+  auto out = OIIO::ImageOutput::create(format_name(path));
   if (!out) {
     (void)OIIO::geterror();
     throw UserError(path + ": unknown image format \"." + ext + "\" (use .png, .ppm, .exr, ...)");
   }
-  check_writable(path);
 }
 
 void write_image(const Image& img, const std::string& path) {

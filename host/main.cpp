@@ -1,11 +1,15 @@
 // main.cpp - the clrt command line: one subcommand per cmd_<name>.cpp.
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <string>
 
 #include "cl.hpp"
 #include "cli_common.hpp"
 #include "error.hpp"
+#include "output_file.hpp"
 
 namespace {
 
@@ -28,8 +32,13 @@ int main(int argc, char** argv) {
   clrt::add_sweep_command(app);
   clrt::add_accuracy_command(app);
   clrt::add_stability_command(app);
+  clrt::install_signal_cleanup();
   try {
     app.parse(argc, argv);
+    // Results printed to stdout (tables, JSON) must have reached it: a full
+    // disk or closed pipe is an error, not a silent truncation.
+    if (std::fflush(stdout) != 0 || std::ferror(stdout))
+      throw clrt::UserError(std::string("cannot write standard output: ") + std::strerror(errno));
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

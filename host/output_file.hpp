@@ -1,25 +1,75 @@
-// output_file.hpp - writing output files safely: check before the work that
-// the path can be written, then write a temporary file in the same directory
-// and rename it over the target, so a failure never leaves a partial file.
+// output_file.hpp - writing output files safely. Every output clrt writes
+// (images, CSV, plots) is produced in memory first and handed to
+// write_output(), the one place that touches the file system:
+//
+// - a regular file (new, or existing and replaced) is written through a temp
+//   file created exclusively (O_CREAT|O_EXCL, random name, mode 0600 until it
+//   is complete) in the target's directory, every write, fsync and close
+//   checked, then renamed over the target: a failure (full disk, I/O error,
+//   signal) never leaves a partial OUT or a temp file, and a name planted by
+//   someone else (a symlink) is never followed;
+// - a symlink OUT is followed: its target is written as above;
+// - a character device, FIFO or socket (/dev/stdout, /dev/full, a pipe) and
+//   "-" (standard output) are written in place, errors checked.
+//
+// check_output() runs the same decisions before any work, so a path that
+// cannot be written fails in milliseconds, not after a long render.
 #pragma once
-#include <filesystem>
 #include <string>
 
 namespace clrt {
 
-// Throws UserError naming `path` unless it is non-empty, in an existing
-// directory that accepts new files, and not itself a directory. `what` names
-// the kind of output in messages ("output", "CSV", ...).
-void check_writable(const std::string& path, const std::string& what = "output");
+enum class OutputKind {
+  File,    // a regular file, new or existing: written atomically
+  Stream,  // a device, FIFO or socket: written in place
+  Stdout,  // "-"
+};
 
-// The temporary file used for `target`: hidden, same directory (so rename()
-// is atomic), same extension (so format-by-extension writers still work).
-std::filesystem::path temp_path_for(const std::filesystem::path& target);
+struct OutputTarget {
+  std::string path;      // as given (for messages)
+  std::string resolved;  // what is written: `path`, or a symlink's target
+  OutputKind kind = OutputKind::File;
+};
 
-// Renames `tmp` over `target`; on failure removes `tmp` and throws UserError.
-void commit_temp(const std::filesystem::path& tmp, const std::string& target, const std::string& what = "output");
+// Throws UserError naming `path` unless it can be written: non-empty, an
+// existing directory that accepts new files (probed by creating and removing
+// a temp file; permission bits say nothing for root), not a directory, and -
+// in a sticky directory such as /tmp - not another user's existing file that
+// rename() could not replace. `what` names the output in messages
+// ("output", "CSV", "plot", ...).
+OutputTarget check_output(const std::string& path, const std::string& what = "output");
+inline void check_writable(const std::string& path, const std::string& what = "output") {
+  (void)check_output(path, what);
+}
 
-// check_writable + temp file + commit_temp for text (CSV, JSON, ...).
-void write_text_atomic(const std::string& path, const std::string& text, const std::string& what = "output");
+// Writes `bytes` to `path` as described above; UserError naming `path` and
+// the system's reason on any failure, with nothing left behind.
+void write_output(const std::string& path, const std::string& bytes, const std::string& what = "output");
+inline void write_text_atomic(const std::string& path, const std::string& text, const std::string& what = "output") {
+  write_output(path, text, what);
+}
+
+// A file named `name` in a new private directory (mode 0700, random name)
+// under $TMPDIR or /tmp, for encoders that can only write to a path: nobody
+// else can plant anything there. Both are removed by the destructor, and by
+// the signal handler below.
+class ScratchFile {
+ public:
+  explicit ScratchFile(const std::string& name);
+  ~ScratchFile();
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+  const std::string& path() const { return path_; }
+  std::string read() const;  // the file's bytes (UserError on failure)
+
+ private:
+  std::string dir_, path_;
+};
+
+// SIGINT, SIGTERM, SIGHUP and SIGPIPE: remove the temp file being written
+// (if any), print one `clrt: error: interrupted by SIG...` line and exit
+// 128 + the signal number (130 for SIGINT, 143 for SIGTERM). Called once by
+// main().
+void install_signal_cleanup();
 
 }  // namespace clrt

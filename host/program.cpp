@@ -60,11 +60,15 @@ cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const s
   auto t0 = std::chrono::steady_clock::now();
   ProgramCacheKey key = make_key(dev, source, options);
   cl::Program program;
-  bool hit = false;
+  bool hit = false, stored = false;
+  std::string note;
   if (flags.use_cache) {
-    if (auto bin = cache_load(key)) {
+    if (auto bin = cache_load(key); bin && cache_begin_load(key, &note)) {
+      // Guarded: a crash inside the driver here leaves the marker, and the
+      // next run discards the entry (program_cache.hpp).
       program = load_binary(ctx, dev, *bin, options);
       hit = program() != nullptr;
+      cache_end_load(key, hit);
     }
   }
   if (!hit) {
@@ -72,18 +76,20 @@ cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const s
     if (flags.use_cache) {
       try {
         auto bins = program.getInfo<CL_PROGRAM_BINARIES>();
-        if (bins.size() == 1) cache_store(key, bins[0]);
+        if (bins.size() == 1) stored = cache_store(key, bins[0]);
       } catch (const cl::Error&) {
       }
     }
   }
   double ms = ms_since(t0);
+  if (!note.empty()) std::cerr << "clrt: warning: " << note << "\n";
   if (flags.verbose) {
     std::cerr << "clrt: build options (" << dev.name << "): " << options << "\n"
               << "clrt: program "
               << (hit               ? "loaded from cache"
-                  : flags.use_cache ? "built, stored in cache"
-                                    : "built (cache off)")
+                  : !flags.use_cache ? "built (cache off)"
+                  : stored           ? "built, stored in cache"
+                                     : "built, not stored in the cache")
               << " in " << ms << " ms" << (flags.use_cache ? " [" + cache_entry_path(key) + "]" : "") << "\n";
   }
   if (stats) {

@@ -1,7 +1,11 @@
 // program_cache.cpp - binary cache entries: hashed key, atomic writes, checks.
 #include "program_cache.hpp"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <atomic>
 #include <cstdint>
@@ -81,39 +85,36 @@ std::string cache_entry_path(const ProgramCacheKey& key) {
   return dir.empty() ? "" : dir + "/" + key.hash() + ".bin";
 }
 
-// Entry: magic, u64 key length, key text, u64 binary length, binary,
-// u64 FNV-1a of the binary.
-std::optional<std::vector<unsigned char>> cache_load(const ProgramCacheKey& key) {
-  std::string path = cache_entry_path(key);
-  if (path.empty()) return std::nullopt;
+bool cache_read_entry(const std::string& path, std::string& key_text, std::vector<unsigned char>& binary) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
+  if (!in) return false;
   std::ostringstream ss;
   ss << in.rdbuf();
   const std::string data = ss.str();
-  if (data.size() < sizeof kMagic || data.compare(0, sizeof kMagic, kMagic, sizeof kMagic) != 0) return std::nullopt;
+  if (data.size() < sizeof kMagic || data.compare(0, sizeof kMagic, kMagic, sizeof kMagic) != 0) return false;
   size_t pos = sizeof kMagic;
   uint64_t klen = 0, blen = 0, sum = 0;
-  if (!get_u64(data, pos, klen) || klen > data.size() - pos) return std::nullopt;
-  if (data.compare(pos, klen, key.text()) != 0) return std::nullopt;  // a hash collision or another key
+  if (!get_u64(data, pos, klen) || klen > data.size() - pos) return false;
+  key_text = data.substr(pos, klen);
   pos += klen;
-  if (!get_u64(data, pos, blen) || blen == 0 || blen > data.size() - pos) return std::nullopt;
-  std::vector<unsigned char> bin(data.begin() + pos, data.begin() + pos + blen);
+  if (!get_u64(data, pos, blen) || blen == 0 || blen > data.size() - pos) return false;
+  binary.assign(data.begin() + pos, data.begin() + pos + blen);
   pos += blen;
-  if (!get_u64(data, pos, sum) || pos != data.size() || sum != fnv1a(bin.data(), bin.size())) return std::nullopt;
+  return get_u64(data, pos, sum) && pos == data.size() && sum == fnv1a(binary.data(), binary.size());
+}
+
+std::optional<std::vector<unsigned char>> cache_load(const ProgramCacheKey& key) {
+  std::string path = cache_entry_path(key), text;
+  std::vector<unsigned char> bin;
+  if (path.empty() || !cache_read_entry(path, text, bin)) return std::nullopt;
+  if (text != key.text()) return std::nullopt;  // a hash collision or another key
   return bin;
 }
 
-void cache_store(const ProgramCacheKey& key, const std::vector<unsigned char>& binary) {
-  static bool warned = false;
-  std::string path = cache_entry_path(key);
-  if (path.empty() || binary.empty()) return;
-  std::error_code ec;
-  fs::create_directories(program_cache_dir(), ec);
+bool cache_write_entry(const std::string& path, const std::string& key_text, const std::vector<unsigned char>& binary) {
   std::string body(kMagic, sizeof kMagic);
-  std::string t = key.text();
-  put_u64(body, t.size());
-  body += t;
+  put_u64(body, key_text.size());
+  body += key_text;
   put_u64(body, binary.size());
   body.append(reinterpret_cast<const char*>(binary.data()), binary.size());
   put_u64(body, fnv1a(binary.data(), binary.size()));
@@ -129,15 +130,80 @@ void cache_store(const ProgramCacheKey& key, const std::vector<unsigned char>& b
       ok = static_cast<bool>(out);
     }
   }
+  std::error_code ec;
   if (ok) {
     fs::rename(tmp, path, ec);
     ok = !ec;
   }
-  if (!ok) {
-    fs::remove(tmp, ec);
-    if (!warned) std::cerr << "clrt: warning: cannot write the program cache entry " << path << "\n";
-    warned = true;
+  if (!ok) fs::remove(tmp, ec);
+  return ok;
+}
+
+bool cache_store(const ProgramCacheKey& key, const std::vector<unsigned char>& binary) {
+  static bool warned = false;
+  std::string path = cache_entry_path(key);
+  if (path.empty() || binary.empty()) return false;
+  std::error_code ec;
+  fs::create_directories(program_cache_dir(), ec);
+  if (fs::exists(path + ".bad", ec)) return false;  // never again for this key (cache_begin_load)
+  if (cache_write_entry(path, key.text(), binary)) return true;
+  if (!warned) std::cerr << "clrt: warning: cannot write the program cache entry " << path << "\n";
+  warned = true;
+  return false;
+}
+
+namespace {
+
+bool process_alive(long pid) {
+  if (pid <= 0) return false;
+  return ::kill(pid_t(pid), 0) == 0 || errno == EPERM;
+}
+
+}  // namespace
+
+bool cache_begin_load(const ProgramCacheKey& key, std::string* note) {
+  const std::string path = cache_entry_path(key);
+  if (path.empty()) return false;
+  std::error_code ec;
+  if (fs::exists(path + ".bad", ec)) return false;
+  const std::string marker = path + ".loading";
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    int fd = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd >= 0) {
+      const std::string pid = std::to_string(::getpid()) + "\n";
+      const bool written = ::write(fd, pid.data(), pid.size()) == ssize_t(pid.size());
+      ::close(fd);
+      if (!written) {
+        ::unlink(marker.c_str());
+        return false;
+      }
+      return true;
+    }
+    if (errno != EEXIST) return false;  // cannot mark: do not load unguarded
+    long other = 0;
+    {
+      std::ifstream in(marker);
+      in >> other;
+    }
+    if (process_alive(other)) return false;  // being loaded right now: build from source
+    // The process that loaded this entry last did not finish: it crashed in
+    // the driver. Never load this entry again.
+    fs::remove(path, ec);
+    std::ofstream(path + ".bad") << "a load of this entry crashed process " << other << "\n";
+    fs::remove(marker, ec);
+    if (note) *note = "discarded the cached binary " + path + ": loading it crashed an earlier run (pid " +
+                      std::to_string(other) + ")";
+    return false;
   }
+  return false;
+}
+
+void cache_end_load(const ProgramCacheKey& key, bool ok) {
+  const std::string path = cache_entry_path(key);
+  if (path.empty()) return;
+  std::error_code ec;
+  if (!ok) fs::remove(path, ec);
+  fs::remove(path + ".loading", ec);
 }
 
 }  // namespace clrt

@@ -3,6 +3,7 @@
 #include "scene.hpp"
 
 #include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <unordered_set>
 
 #include "../kernels/clrt_layout.h"
 #include "error.hpp"
@@ -55,6 +57,27 @@ class Parser {
     return {number(j[0], where + "[0]"), number(j[1], where + "[1]"), number(j[2], where + "[2]")};
   }
 
+  // A coordinate within the float32-safe range (scene.hpp).
+  Vec3 position(const json& j, const std::string& where) const {
+    Vec3 v = vec3(j, where);
+    const double c[3] = {v.x, v.y, v.z};
+    for (int k = 0; k < 3; ++k)
+      if (std::fabs(c[k]) > kMaxLength)
+        fail(where + "[" + std::to_string(k) + "]",
+             "must be within ±" + fmt(kMaxLength) + ", the range clrt renders in float32 (got " + fmt(c[k]) + ")");
+    return v;
+  }
+
+  // A size in [kMinLength, kMaxLength]; `positive_message` for <= 0.
+  double size(const json& j, const std::string& where, const std::string& positive_message) const {
+    const double v = number(j, where);
+    if (!(v > 0)) fail(where, positive_message + " (got " + fmt(v) + ")");
+    if (v < kMinLength || v > kMaxLength)
+      fail(where, "must be in [" + fmt(kMinLength) + ", " + fmt(kMaxLength) +
+                      "], the range clrt renders in float32 (got " + fmt(v) + ")");
+    return v;
+  }
+
   Vec3 color(const json& j, const std::string& where) const {
     Vec3 c = vec3(j, where);
     for (double v : {c.x, c.y, c.z})
@@ -65,8 +88,12 @@ class Parser {
   static std::string type_of(const json& j) { return j.type_name(); }
   // A string from the file, quoted and escaped as JSON, so that a key such as
   // "a\nb" cannot break the one-line message.
+  // Long strings are cut (a 50 MB key must not be echoed in full).
   static std::string quoted(const std::string& s) {
-    return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
+    constexpr size_t kMaxEcho = 64;
+    if (s.size() <= kMaxEcho) return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
+    return json(s.substr(0, kMaxEcho)).dump(-1, ' ', false, json::error_handler_t::replace) + "... (" +
+           std::to_string(s.size()) + " bytes)";
   }
   static std::string fmt(double v) {
     std::ostringstream os;
@@ -89,7 +116,7 @@ class Parser {
         fail("recursion_depth", "must be in [0, " + std::to_string(CLRT_MAX_DEPTH) + "] (got " + d.dump() + ")");
       s.recursion_depth = static_cast<int>(d.get<long long>());
     }
-    if (root.contains("epsilon")) s.epsilon = number_in(root["epsilon"], "epsilon", 0, 1e30);
+    if (root.contains("epsilon")) s.epsilon = number_in(root["epsilon"], "epsilon", 0, kMaxLength);
     if (root.contains("spheres")) {
       const json& arr = root["spheres"];
       if (!arr.is_array()) fail("spheres", "expected an array, got " + type_of(arr));
@@ -99,13 +126,28 @@ class Parser {
       const json& arr = root["lights"];
       if (!arr.is_array()) fail("lights", "expected an array, got " + type_of(arr));
       for (size_t i = 0; i < arr.size(); ++i) s.lights.push_back(parse_light(arr[i], "lights[" + std::to_string(i) + "]"));
+      double total = 0;
+      for (const auto& l : s.lights) total += l.intensity;
+      if (total > kMaxTotalIntensity)
+        fail("lights", "the intensities add up to " + fmt(total) + ", more than " + fmt(kMaxTotalIntensity) +
+                           " (colours would overflow float32)");
+    }
+    // The camera's ray directions: rotation x (viewport/2, viewport/2, d).
+    const auto& r = s.camera.rotation;
+    const double half_w = s.camera.viewport_w / 2, half_h = s.camera.viewport_h / 2, d = s.camera.projection_plane_d;
+    for (int row = 0; row < 3; ++row) {
+      const double reach = std::fabs(r[row * 3]) * half_w + std::fabs(r[row * 3 + 1]) * half_h + std::fabs(r[row * 3 + 2]) * d;
+      if (reach > kMaxLength)
+        fail("camera", "ray directions reach " + fmt(reach) + " (rotation row " + std::to_string(row) +
+                           " times viewport and projection distance), more than " + fmt(kMaxLength) +
+                           ", the range clrt renders in float32");
     }
     return s;
   }
 
   void parse_camera(const json& j, Camera& c) const {
     only_keys(j, "camera", {"position", "rotation", "viewport", "projection_plane_d"});
-    if (j.contains("position")) c.position = vec3(j["position"], "camera.position");
+    if (j.contains("position")) c.position = position(j["position"], "camera.position");
     if (j.contains("rotation")) {
       const json& r = j["rotation"];
       if (!r.is_array() || r.size() != 3) fail("camera.rotation", "expected a 3x3 array of numbers");
@@ -119,13 +161,13 @@ class Parser {
     if (j.contains("viewport")) {
       const json& v = j["viewport"];
       if (!v.is_array() || v.size() != 2) fail("camera.viewport", "expected an array of 2 numbers");
-      c.viewport_w = number(v[0], "camera.viewport[0]");
-      c.viewport_h = number(v[1], "camera.viewport[1]");
-      if (!(c.viewport_w > 0) || !(c.viewport_h > 0)) fail("camera.viewport", "sizes must be > 0");
+      for (int k = 0; k < 2; ++k)
+        if (!(number(v[k], "camera.viewport[" + std::to_string(k) + "]") > 0)) fail("camera.viewport", "sizes must be > 0");
+      c.viewport_w = size(v[0], "camera.viewport[0]", "must be > 0");
+      c.viewport_h = size(v[1], "camera.viewport[1]", "must be > 0");
     }
     if (j.contains("projection_plane_d")) {
-      c.projection_plane_d = number(j["projection_plane_d"], "camera.projection_plane_d");
-      if (!(c.projection_plane_d > 0)) fail("camera.projection_plane_d", "must be > 0");
+      c.projection_plane_d = size(j["projection_plane_d"], "camera.projection_plane_d", "must be > 0");
     }
   }
 
@@ -135,13 +177,13 @@ class Parser {
     if (!j.contains("center")) fail(w, "missing \"center\"");
     if (!j.contains("radius")) fail(w, "missing \"radius\"");
     if (!j.contains("color")) fail(w, "missing \"color\"");
-    s.center = vec3(j["center"], w + ".center");
-    s.radius = number(j["radius"], w + ".radius");
-    if (!(s.radius > 0)) fail(w + ".radius", "must be > 0 (got " + fmt(s.radius) + ")");
+    s.center = position(j["center"], w + ".center");
+    s.radius = size(j["radius"], w + ".radius", "must be > 0");
     s.color = color(j["color"], w + ".color");
     if (j.contains("specular")) {
       s.specular = number(j["specular"], w + ".specular");
       if (s.specular != -1 && s.specular < 0) fail(w + ".specular", "must be -1 (matte) or >= 0 (got " + fmt(s.specular) + ")");
+      if (s.specular > kMaxSpecular) fail(w + ".specular", "must be at most " + fmt(kMaxSpecular) + " (got " + fmt(s.specular) + ")");
     }
     if (j.contains("reflective")) s.reflective = number_in(j["reflective"], w + ".reflective", 0, 1);
     return s;
@@ -160,14 +202,22 @@ class Parser {
       only_keys(j, w, {"type", "intensity", "position"});
       l.type = LightType::Point;
       if (!j.contains("position")) fail(w, "point light needs \"position\"");
-      l.vec = vec3(j["position"], w + ".position");
+      l.vec = position(j["position"], w + ".position");
     } else if (type == "directional") {
       only_keys(j, w, {"type", "intensity", "direction"});
       l.type = LightType::Directional;
       if (!j.contains("direction")) fail(w, "directional light needs \"direction\"");
       l.vec = vec3(j["direction"], w + ".direction");
       if (l.vec.x == 0 && l.vec.y == 0 && l.vec.z == 0) fail(w + ".direction", "must not be the zero vector");
-      if (!std::isfinite(dot(l.vec, l.vec))) fail(w + ".direction", "is too long (its squared length overflows)");
+      // Rescaled by a power of two so the largest component lies in
+      // [0.5, 1): [1e-300, 1e-300, -1e-300] has a squared length of 0 in
+      // double, [1e300, 0, 0] one of inf, [0, 1e39, -1e39] overflows float.
+      // A power of two is exact (the book's formulas give bit-identical
+      // results for the shipped scenes) and idempotent (a scene written back
+      // by scene_to_json parses to the same values).
+      int e = 0;
+      (void)std::frexp(std::max({std::fabs(l.vec.x), std::fabs(l.vec.y), std::fabs(l.vec.z)}), &e);
+      l.vec = {std::ldexp(l.vec.x, -e), std::ldexp(l.vec.y, -e), std::ldexp(l.vec.z, -e)};
     } else {
       fail(w + ".type", "unknown light type " + quoted(type) + " (expected ambient, point or directional)");
     }
@@ -183,9 +233,24 @@ class Parser {
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& name) {
+  // A NUL byte is not JSON; nothing after one may be silently dropped.
+  if (const size_t nul = text.find('\0'); nul != std::string::npos)
+    throw UserError(name + ": malformed JSON: NUL byte at offset " + std::to_string(nul));
+  // Duplicate keys are ambiguous (JSON parsers disagree on which one wins):
+  // reject them, per object.
+  std::vector<std::unordered_set<std::string>> open_objects;
+  auto reject_duplicates = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) open_objects.emplace_back();
+    if (event == json::parse_event_t::object_end && !open_objects.empty()) open_objects.pop_back();
+    if (event == json::parse_event_t::key && !open_objects.empty()) {
+      std::string key = parsed.get<std::string>();
+      if (!open_objects.back().insert(key).second) throw UserError(name + ": duplicate key " + Parser::quoted(key));
+    }
+    return true;
+  };
   json root;
   try {
-    root = json::parse(text);
+    root = json::parse(text, reject_duplicates);
   } catch (const json::exception& e) {
     std::string msg = e.what();
     // nlohmann prefixes "[json.exception.parse_error.101] "; keep the rest.

@@ -40,7 +40,24 @@ struct Scene {
   std::vector<Light> lights;
 };
 
+// The range every engine and precision renders without overflow or
+// underflow (so without NaN/Inf): every coordinate within ±kMaxLength, every
+// size (radius, viewport, projection distance) in [kMinLength, kMaxLength],
+// the camera's ray directions (rotation × viewport/projection distance)
+// within kMaxLength, specular exponents up to kMaxSpecular, the sum of all
+// light intensities up to kMaxTotalIntensity. Why these numbers: the kernels
+// compute in float32 (fp64 builds receive scene values as float hi + lo
+// pairs), where squares of differences of two coordinates must stay below
+// FLT_MAX ~ 3.4e38 and squares of sizes above FLT_MIN ~ 1.2e-38: 1e8 leaves
+// them 1e16 and 1e-16, with room for the quadratic's b^2 - 4ac. The parser
+// rejects anything outside, naming the value and the limit.
+constexpr double kMaxLength = 1e8, kMinLength = 1e-8;
+constexpr double kMaxSpecular = 1e8, kMaxTotalIntensity = 1e30;
+
 // Parses and validates a scene; throws UserError("<name>: <path>: <problem>").
+// Directional light directions are rescaled by a power of two so their
+// largest component lies in [0.5, 1) (no length underflows or overflows):
+// the book's lighting does not depend on their length.
 Scene parse_scene(const std::string& json_text, const std::string& name);
 // Largest scene file load_scene() accepts.
 constexpr size_t kMaxSceneBytes = size_t(64) << 20;

@@ -133,6 +133,14 @@ void print_sweep(const std::vector<SweepRow>& rows) {
     }
 }
 
+std::string rays_plot_path(const std::string& path) {
+  std::string rays_path = path;
+  size_t dot = rays_path.find_last_of('.'), slash = rays_path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) dot = rays_path.size();
+  rays_path.insert(dot, "-rays");
+  return rays_path;
+}
+
 std::string plot_sweep(const std::vector<SweepRow>& rows, const std::string& path, const std::string& title) {
   std::map<std::string, Series> time, rays;
   Series ref("reference (scalar double)", {}, {});
@@ -163,10 +171,7 @@ std::string plot_sweep(const std::vector<SweepRow>& rows, const std::string& pat
   po.x_from_zero = true;
   po.y_from_zero = true;
   write_plot(path, title + ": time per depth", "recursion depth", "ms", ts, po);
-  std::string rays_path = path;
-  size_t dot = rays_path.find_last_of('.'), slash = rays_path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) dot = rays_path.size();
-  rays_path.insert(dot, "-rays");
+  const std::string rays_path = rays_plot_path(path);
   write_plot(rays_path, title + ": rays per depth", "recursion depth", "million rays", rs, po);
   return rays_path;
 }

@@ -88,12 +88,12 @@ void run_worker(ClRenderer& r, BandQueue& queue, Image& img, const TilePolicy& p
 
 }  // namespace
 
-void print_shares(const std::vector<DeviceShare>& shares) {
+void print_shares(const std::vector<DeviceShare>& shares, std::FILE* to) {
   long long total = 0;
   for (const auto& s : shares) total += s.rows;
   for (size_t i = 0; i < shares.size(); ++i) {
     const auto& s = shares[i];
-    std::printf("  device %zu %-48.48s %4d tiles, %6lld rows (%5.1f%%), kernel %9.2f ms, busy %9.2f ms, longest launch %8.2f ms%s\n",
+    std::fprintf(to, "  device %zu %-48.48s %4d tiles, %6lld rows (%5.1f%%), kernel %9.2f ms, busy %9.2f ms, longest launch %8.2f ms%s\n",
                 i, s.device.c_str(), s.tiles, s.rows, total ? 100.0 * s.rows / total : 0.0, s.kernel_ms, s.busy_ms,
                 s.max_launch_ms, time_source_note(s.host_timed_launches, s.tiles).c_str());
   }

@@ -4,6 +4,7 @@
 // Band heights adapt per device so no kernel launch exceeds a time limit (GPU
 // watchdogs) and no band exceeds the device's largest allocation.
 #pragma once
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,7 @@ std::vector<DeviceShare> render_bands(const std::vector<ClRenderer*>& workers, I
 
 // Prints one line per device: bands, rows (share of the frame), kernel and
 // busy time, longest launch.
-void print_shares(const std::vector<DeviceShare>& shares);
+void print_shares(const std::vector<DeviceShare>& shares, std::FILE* to = stdout);
 
 // The effective launch limit of `policy` for a device of this type string.
 double launch_limit_ms(const TilePolicy& policy, const std::string& device_type);

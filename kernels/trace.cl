@@ -14,7 +14,10 @@
  * host, host/build_options.cpp):
  *   CLRT_PREC            0 naive, 1 stable, 2 robust (default), 3 fast, 4 fp64
  *   CLRT_SPECIALIZED     scene-specific build: the counts below are constants
- *   CLRT_DEPTH, CLRT_N_SPHERES, CLRT_N_LIGHTS
+ *   CLRT_DEPTH
+ *   CLRT_N_SPHERES, CLRT_N_LIGHTS  specialized, small scenes only: constant
+ *                        loop bounds, loops unrolled (the host leaves them out
+ *                        past a bound, kMaxUnrolled* in build_options.hpp)
  *   CLRT_HAS_AMBIENT, CLRT_HAS_POINT, CLRT_HAS_DIRECTIONAL,
  *   CLRT_HAS_SPECULAR, CLRT_HAS_REFLECTIVE  (0/1; generic build: all 1)
  *   CLRT_COUNT_RAYS      write per-pixel ray counters
@@ -43,8 +46,13 @@
 #endif
 
 #ifdef CLRT_SPECIALIZED
+#ifdef CLRT_N_SPHERES
 #define NSPH CLRT_N_SPHERES
 #define NLIG CLRT_N_LIGHTS
+#else
+#define NSPH (P->n_spheres)
+#define NLIG (P->n_lights)
+#endif
 #define DEPTH CLRT_DEPTH
 #define STACK_SIZE (CLRT_DEPTH + 1)
 #else
@@ -70,10 +78,10 @@
 #endif
 
 /* Helpers are forced inline (PoCL otherwise keeps intersect() out of line,
- * a call per ray-sphere test), and specialized builds unroll the loops whose
- * bounds are constants there. */
+ * a call per ray-sphere test), and specialized builds of small scenes unroll
+ * the loops whose bounds are constants there. */
 #define CLRT_INLINE inline __attribute__((always_inline))
-#ifdef CLRT_SPECIALIZED
+#if defined(CLRT_SPECIALIZED) && defined(CLRT_N_SPHERES)
 #define CLRT_UNROLL _Pragma("unroll")
 #else
 #define CLRT_UNROLL

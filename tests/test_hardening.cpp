@@ -1,0 +1,488 @@
+// test_hardening.cpp - what adversarial input, full disks, hostile
+// directories, bad caches and signals must not break (issue 10): each case
+// reproduces a failure the earlier code had.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/mount.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "build_options.hpp"
+#include "cl_renderer.hpp"
+#include "error.hpp"
+#include "precision.hpp"
+#include "cli_run.hpp"
+#include "compare.hpp"
+#include "output_file.hpp"
+#include "program_cache.hpp"
+#include "reference.hpp"
+#include "scene.hpp"
+#include "test_util.hpp"
+
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+using clrt_test::run_clrt;
+using clrt_test::RunResult;
+using clrt_test::source_path;
+using clrt_test::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kDemo = source_path("scenes/cgfs-demo.json");
+
+void check_error(const RunResult& r, std::initializer_list<std::string> needles) {
+  INFO("status " << r.status << ", stderr: " << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.one_line_error());
+  CHECK_THAT(r.err, StartsWith("clrt: error: "));
+  for (const auto& n : needles) CHECK_THAT(r.err, Contains(n));
+}
+
+// Runs a shell command line; returns its exit status (-1 if it did not exit).
+int shell(const std::string& cmd) {
+  int st = std::system(cmd.c_str());
+  return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+// A small tmpfs, or nothing when this process may not mount (not root, no
+// CAP_SYS_ADMIN, a container): the caller skips then.
+struct SmallTmpfs {
+  std::string dir;
+  bool mounted = false;
+  SmallTmpfs(const TempDir& parent, const char* size) : dir(parent / "tmpfs") {
+    fs::create_directory(dir);
+    mounted = ::mount("tmpfs", dir.c_str(), "tmpfs", 0, (std::string("size=") + size).c_str()) == 0;
+  }
+  ~SmallTmpfs() {
+    if (mounted) ::umount(dir.c_str());
+  }
+};
+
+std::vector<std::string> entries(const std::string& dir) {
+  std::vector<std::string> out;
+  for (auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+  return out;
+}
+
+}  // namespace
+
+// ---- 1. symlink attacks and temp files --------------------------------------
+
+TEST_CASE("output goes through an exclusive temp file: planted links are never followed", "[cli][hardening]") {
+  TempDir dir;
+  // What the old predictable temp name would have been: a planted symlink to
+  // a victim file must stay untouched.
+  const std::string victim = dir.write("victim.txt", "precious");
+  for (int pid = 1; pid < 200; ++pid)
+    fs::create_symlink(victim, dir / (".out.tmp" + std::to_string(pid) + ".png"));
+  RunResult r = run_clrt({"render", kDemo, "-o", dir / "out.png", "--width", "16", "--height", "16"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(clrt_test::slurp(victim) == "precious");
+  CHECK(fs::is_regular_file(fs::symlink_status(dir / "out.png")));
+  // The final file has the usual permissions (the temp file is 0600 while it
+  // is incomplete), and no temp file is left.
+  struct stat st {};
+  REQUIRE(::stat((dir / "out.png").c_str(), &st) == 0);
+  const mode_t mask = ::umask(022);
+  ::umask(mask);
+  CHECK((st.st_mode & 0777) == (0666 & ~mask));
+  for (const auto& e : dir.entries()) CHECK_FALSE(e.rfind(".clrt-", 0) == 0);
+}
+
+TEST_CASE("a 250-character output name still works", "[cli][hardening]") {
+  TempDir dir;
+  const std::string name = std::string(246, 'n') + ".png";
+  RunResult r = run_clrt({"render", kDemo, "-o", dir / name, "--width", "8", "--height", "8"});
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK(dir.entries() == std::vector<std::string>{name});
+}
+
+// ---- 2. full disks ---------------------------------------------------------
+
+TEST_CASE("a full disk is an error, with no output and no temp file", "[cli][hardening]") {
+  // /dev/full: every write fails with ENOSPC (no privileges needed).
+  check_error(run_clrt({"render", kDemo, "-o", "/dev/full", "--width", "32", "--height", "32"}),
+              {"/dev/full: cannot write output: No space left on device"});
+  check_error(run_clrt({"sweep", kDemo, "--depths", "0:1", "--width", "8", "--height", "8", "--repeat", "1", "--csv",
+                        "/dev/full"}),
+              {"/dev/full: cannot write CSV: No space left on device"});
+  // JSON (and every table) on a full standard output.
+  const int status = shell(clrt_test::shell_quote(CLRT_BINARY) + " compare " + clrt_test::shell_quote(kDemo) +
+                           " --width 8 --height 8 --json >/dev/full 2>/dev/null");
+  CHECK(status == 2);
+
+  TempDir parent;
+  SmallTmpfs tmpfs(parent, "48k");
+  if (!tmpfs.mounted) {
+    WARN("cannot mount a tmpfs here (needs root); the small-disk part is skipped");
+    return;
+  }
+  for (const char* ext : {"png", "jpg", "exr", "tif", "sgi", "gif"}) {
+    INFO(ext);
+    const std::string out = tmpfs.dir + "/out." + ext;
+    // 600x600 does not fit in 48 KiB in any of these formats.
+    check_error(run_clrt({"render", kDemo, "-o", out, "--engine", "reference"}),
+                {out + ": cannot write output: No space left on device"});
+    CHECK(entries(tmpfs.dir).empty());
+  }
+  // An already full disk: not even the check file fits.
+  std::ofstream(tmpfs.dir + "/filler", std::ios::binary) << std::string(1 << 20, 'x');
+  check_error(run_clrt({"render", kDemo, "-o", tmpfs.dir + "/out.png", "--width", "8", "--height", "8"}),
+              {"No space left on device"});
+  CHECK(entries(tmpfs.dir) == std::vector<std::string>{"filler"});
+}
+
+// ---- 3. launch sizes --------------------------------------------------------
+
+TEST_CASE("a --local size beyond the device's limits is bad input, not a blank image", "[cli][hardening]") {
+  TempDir dir;
+  const std::string out = dir / "out.png";
+  for (const char* local : {"2147483647x1", "1x2147483647", "65536x65536"}) {
+    INFO(local);
+    check_error(run_clrt({"render", kDemo, "-o", out, "--width", "16", "--height", "16", "--local", local}),
+                {"--local", "exceeds what"});
+    CHECK_FALSE(fs::exists(out));
+  }
+  check_error(run_clrt({"render", kDemo, "-o", out, "--local", "99999999999x1"}), {"--local: expected WxH"});
+}
+
+// ---- 4. and 5. values float32 (or double) cannot hold -----------------------
+
+TEST_CASE("scene values beyond the float32 range are rejected, naming value and limit", "[cli][hardening]") {
+  using clrt::parse_scene;
+  auto error_of = [](const std::string& text) {
+    try {
+      parse_scene(text, "s.json");
+    } catch (const clrt::UserError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string sphere = R"({"center": [0, 0, 3], "radius": 1, "color": [255, 0, 0]})";
+  CHECK_THAT(error_of(R"({"lights": [{"type": "point", "intensity": 1, "position": [0, 0, -1e39]}]})"),
+             Contains("lights[0].position[2]: must be within ±1e+08") && Contains("got -1e+39"));
+  CHECK_THAT(error_of(R"({"spheres": [{"center": [0, 0, 0], "radius": 1e20, "color": [1, 1, 1]}]})"),
+             Contains("spheres[0].radius: must be in [1e-08, 1e+08]") && Contains("got 1e+20"));
+  CHECK_THAT(error_of(R"({"spheres": [{"center": [0, 0, 0], "radius": 1e-20, "color": [1, 1, 1]}]})"),
+             Contains("spheres[0].radius: must be in [1e-08, 1e+08]"));
+  CHECK_THAT(error_of(R"({"camera": {"position": [1e9, 0, 0]}})"), Contains("camera.position[0]"));
+  CHECK_THAT(error_of(R"({"camera": {"viewport": [1e9, 1]}})"), Contains("camera.viewport[0]"));
+  CHECK_THAT(error_of(R"({"camera": {"rotation": [[1e5, 0, 0], [0, 1, 0], [0, 0, 1]], "viewport": [1e4, 1]}})"),
+             Contains("camera: ray directions reach 5e+08"));
+  CHECK_THAT(error_of(R"({"lights": [{"type": "ambient", "intensity": 1e30}, {"type": "ambient", "intensity": 1e30}]})"),
+             Contains("lights: the intensities add up to 2e+30, more than 1e+30"));
+  CHECK_THAT(error_of("{\"spheres\": [" + sphere.substr(0, sphere.size() - 1) + R"(, "specular": 1e9}]})"),
+             Contains("spheres[0].specular: must be at most 1e+08"));
+}
+
+TEST_CASE("directional light directions are rescaled without overflow or underflow", "[hardening][reference]") {
+  // Lighting does not depend on a direction's length; before, [1e-300, ...]
+  // made the reference itself output NaN and [0, 1e39, -1e39] NaN pixels.
+  auto with_direction = [](const std::string& d) {
+    return clrt::parse_scene(R"({"spheres": [{"center": [0, -1, 3], "radius": 1, "color": [255, 0, 0], "specular": 10}],
+      "lights": [{"type": "ambient", "intensity": 0.2}, {"type": "directional", "intensity": 0.8, "direction": )" +
+                                 d + "}]}",
+                             "s.json");
+  };
+  const clrt::Scene unit = with_direction("[1, 1, -1]");
+  const clrt::Image want = clrt::render_reference(unit, 40, 30, 3);
+  // A power of two changes nothing: bit-identical.
+  CHECK(clrt::render_reference(with_direction("[4, 4, -4]"), 40, 30, 3).rgb == want.rgb);
+  for (const char* d : {"[1e-300, 1e-300, -1e-300]", "[1e300, 1e300, -1e300]", "[5e-324, 5e-324, -5e-324]",
+                        "[0, 1e39, -1e39]"}) {
+    INFO(d);
+    const clrt::Vec3 v = with_direction(d).lights[1].vec;
+    const double m = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+    CHECK(m >= 0.5);
+    CHECK(m < 1);
+  }
+  for (const char* d : {"[1e-300, 1e-300, -1e-300]", "[1e300, 1e300, -1e300]", "[5e-324, 5e-324, -5e-324]"}) {
+    INFO(d);
+    const clrt::Image got = clrt::render_reference(with_direction(d), 40, 30, 3);
+    const clrt::Comparison c = clrt::compare_images(got, want);
+    CHECK(c.nan_inf == 0);
+    CHECK(c.nan_inf_reference == 0);
+    CHECK(c.max_abs_float < 1e-9);  // the same direction: only double rounding differs
+  }
+}
+
+TEST_CASE("at the edges of the accepted range no engine or precision gives a NaN pixel", "[opencl][hardening]") {
+  // Each scene is at a limit of scene.hpp's range; every variant the device
+  // runs must stay finite, and so must the reference.
+  const std::vector<std::string> scenes = {
+      // far and huge: coordinates at 1e8, a sphere of radius 1e8 around them
+      R"({"camera": {"position": [1e8, 1e8, -1e8]}, "spheres": [{"center": [1e8, 1e8, 0], "radius": 1e8,
+         "color": [255, 255, 255], "specular": 1e8, "reflective": 1}], "lights": [{"type": "point",
+         "intensity": 1e29, "position": [-1e8, -1e8, -1e8]}, {"type": "directional", "intensity": 1e29,
+         "direction": [0, 1e300, -1e300]}]})",
+      // tiny: radius, viewport and projection distance at 1e-8
+      R"({"camera": {"viewport": [1e-8, 1e-8], "projection_plane_d": 1e-8}, "epsilon": 0,
+         "spheres": [{"center": [0, 0, 3e-8], "radius": 1e-8, "color": [255, 0, 0], "specular": 0,
+         "reflective": 0.5}], "lights": [{"type": "point", "intensity": 1, "position": [0, 0, 0]}]})",
+      // long rays: viewport 1e8 seen from a projection distance of 1e-8
+      R"({"camera": {"viewport": [1e8, 1e8], "projection_plane_d": 1e-8}, "spheres": [{"center": [0, 0, 1e8],
+         "radius": 1e8, "color": [9, 9, 9], "specular": 500}], "lights": [{"type": "ambient", "intensity": 1e30}]})"};
+  const clrt::DeviceInfo dev = clrt_test::test_device();
+  for (const auto& text : scenes) {
+    const clrt::Scene s = clrt::parse_scene(text, "edge.json");
+    const clrt::Image ref = clrt::render_reference(s, 32, 24, 3);
+    for (clrt::Precision p : clrt::all_precisions()) {
+      if (p == clrt::Precision::Fp64 && !dev.fp64) continue;
+      INFO(text.substr(0, 60) << " / " << clrt::precision_name(p));
+      clrt::KernelConfig cfg;
+      cfg.precision = p;
+      const clrt::Comparison c =
+          clrt::compare_images(clrt::render_opencl(s, 32, 24, 3, clrt_test::test_device_spec(), cfg), ref);
+      CHECK(c.nan_inf == 0);
+      CHECK(c.nan_inf_reference == 0);
+    }
+  }
+}
+
+// ---- 6. cached binaries are untrusted ----------------------------------------
+
+TEST_CASE("a cached binary whose load crashed is never loaded again", "[cli][hardening][cache]") {
+  TempDir cache;
+  const std::string env = "CLRT_CACHE_DIR=" + clrt_test::shell_quote(cache.path().string());
+  const std::vector<std::string> render = {"render", kDemo, "--width", "16", "--height", "16", "--verbose", "-o"};
+  TempDir out;
+  auto run = [&](const std::string& name) {
+    std::vector<std::string> args = render;
+    args.push_back(out / name);
+    return run_clrt(args, env);
+  };
+  REQUIRE(run("a.png").status == 0);  // stores the entry
+  std::string entry;
+  for (const auto& e : cache.entries())
+    if (e.size() > 4 && e.substr(e.size() - 4) == ".bin") entry = cache / e;
+  REQUIRE_FALSE(entry.empty());
+
+  SECTION("the marker of a load that never finished") {
+    // A process that no longer runs left its marker: it crashed while loading.
+    pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    std::ofstream(entry + ".loading") << child << "\n";
+    RunResult r = run("b.png");
+    INFO(r.err);
+    CHECK(r.status == 0);
+    CHECK_THAT(r.err, Contains("discarded the cached binary"));
+    CHECK(fs::exists(entry + ".bad"));
+    CHECK_FALSE(fs::exists(entry + ".loading"));
+    // From now on this key is always built from source, never stored.
+    RunResult again = run("c.png");
+    CHECK(again.status == 0);
+    CHECK_THAT(again.err, Contains("built, not stored in the cache"));
+    CHECK(clrt_test::slurp(out / "b.png") == clrt_test::slurp(out / "a.png"));
+  }
+  SECTION("a well-formed entry holding a bad binary") {
+    std::string key_text;
+    std::vector<unsigned char> binary;
+    REQUIRE(clrt::cache_read_entry(entry, key_text, binary));
+    std::vector<unsigned char> garbage(binary.size(), 0);
+    for (size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<unsigned char>(i * 131 + 7);
+    std::copy(binary.begin(), binary.begin() + std::min<size_t>(16, binary.size()), garbage.begin());  // keep a plausible header
+    REQUIRE(clrt::cache_write_entry(entry, key_text, garbage));
+    // The first run may die inside the driver (PoCL asserts); it must not
+    // take every later run with it.
+    RunResult first = run("b.png");
+    INFO("first run: status " << first.status << ": " << first.err);
+    RunResult second = run("c.png");
+    INFO("second run: " << second.err);
+    CHECK(second.status == 0);
+    CHECK(clrt_test::slurp(out / "c.png") == clrt_test::slurp(out / "a.png"));
+  }
+}
+
+TEST_CASE("verbose output says when nothing was stored in the cache", "[cli][hardening][cache]") {
+  TempDir out;
+  RunResult r = run_clrt({"render", kDemo, "--width", "8", "--height", "8", "--verbose", "--no-cache", "-o", out / "a.png"});
+  CHECK_THAT(r.err, Contains("built (cache off)"));
+  // /proc accepts no new directory or file, even for root.
+  RunResult ro = run_clrt({"render", kDemo, "--width", "8", "--height", "8", "--verbose", "-o", out / "b.png"},
+                          "CLRT_CACHE_DIR=/proc/clrt-cache");
+  INFO(ro.err);
+  CHECK(ro.status == 0);
+  CHECK_THAT(ro.err, Contains("built, not stored in the cache"));
+  CHECK_THAT(ro.err, !Contains("built, stored in cache"));
+}
+
+TEST_CASE("an unusable XDG_CACHE_HOME is named, not reported as a missing device", "[cli][hardening]") {
+  TempDir dir;
+  const std::string file = dir.write("not-a-dir", "x");
+  RunResult r = run_clrt({"devices"}, "XDG_CACHE_HOME=" + clrt_test::shell_quote(file));
+  if (r.status == 0) {
+    WARN("this OpenCL driver starts without a cache directory; nothing to diagnose");
+    return;
+  }
+  check_error(r, {"XDG_CACHE_HOME=" + file});
+}
+
+// ---- 7. specialization stays bounded ------------------------------------------
+
+TEST_CASE("large scenes are specialized without unrolling their loops", "[hardening][specialize]") {
+  clrt::Scene s;
+  s.spheres.resize(clrt::kMaxUnrolledSpheres);
+  s.lights.resize(3);
+  clrt::KernelConfig cfg;
+  CHECK_THAT(clrt::build_options(cfg, s, 3, true), Contains("-DCLRT_N_SPHERES=16"));
+  s.spheres.resize(clrt::kMaxUnrolledSpheres + 1);
+  CHECK_THAT(clrt::build_options(cfg, s, 3, true), !Contains("CLRT_N_SPHERES") && Contains("-DCLRT_SPECIALIZED"));
+  s.spheres.resize(4);
+  s.lights.resize(clrt::kMaxUnrolledLights + 1);
+  CHECK_THAT(clrt::build_options(cfg, s, 3, true), !Contains("CLRT_N_LIGHTS") && !Contains("CLRT_LIGHT_TYPES"));
+}
+
+TEST_CASE("100,000 ambient lights render (before: 330 s of build and first launch)", "[cli][hardening][opencl]") {
+  TempDir dir;
+  std::string text = R"({"spheres": [{"center": [0, 0, 3], "radius": 1, "color": [255, 0, 0]}], "lights": [)";
+  for (int i = 0; i < 100000; ++i) text += std::string(i ? "," : "") + R"({"type": "ambient", "intensity": 1e-5})";
+  text += "]}";
+  const std::string scene = dir.write("many.json", text);
+  RunResult r = run_clrt({"compare", scene, "--width", "8", "--height", "8", "--fail-percent", "0"});
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+}
+
+// ---- 8. outputs that are not regular files -----------------------------------
+
+TEST_CASE("symlinks, devices, FIFOs and '-' are written to, not replaced", "[cli][hardening]") {
+  TempDir dir;
+  SECTION("a symlink OUT writes its target and stays a link") {
+    fs::create_symlink("target.png", dir / "link.png");
+    RunResult r = run_clrt({"render", kDemo, "-o", dir / "link.png", "--width", "8", "--height", "8"});
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    CHECK(fs::is_symlink(fs::symlink_status(dir / "link.png")));
+    CHECK(fs::is_regular_file(dir / "target.png"));
+  }
+  SECTION("a character device stays a device") {
+    RunResult r = run_clrt({"render", kDemo, "-o", "/dev/null", "--width", "8", "--height", "8"});
+    INFO(r.err);
+    CHECK(r.status == 0);
+    CHECK(fs::is_character_file("/dev/null"));
+    RunResult csv = run_clrt({"sweep", kDemo, "--depths", "0", "--width", "8", "--height", "8", "--repeat", "1",
+                              "--csv", "/dev/null"});
+    CHECK(csv.status == 0);
+    CHECK(fs::is_character_file("/dev/null"));
+  }
+  SECTION("'-' is PNG on standard output, the report on stderr") {
+    RunResult r = run_clrt({"render", kDemo, "-o", "-", "--width", "8", "--height", "8"});
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    REQUIRE(r.out.size() > 8);
+    CHECK(r.out.compare(1, 3, "PNG") == 0);
+    CHECK_THAT(r.err, Contains("8x8 depth 3"));
+  }
+  SECTION("a FIFO is written in place") {
+    const std::string fifo = dir / "pipe.ppm";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    std::string got;
+    std::thread reader([&] { got = clrt_test::slurp(fifo); });
+    RunResult r = run_clrt({"render", kDemo, "-o", fifo, "--width", "8", "--height", "8"});
+    reader.join();
+    INFO(r.err);
+    CHECK(r.status == 0);
+    CHECK(got.rfind("P6", 0) == 0);  // a PPM went through the pipe
+    CHECK(fs::is_fifo(fifo));
+  }
+}
+
+// ---- 9. signals ---------------------------------------------------------------
+
+TEST_CASE("a signal removes the scratch files and exits 128 + signal", "[hardening]") {
+  int fds[2];
+  REQUIRE(::pipe(fds) == 0);
+  pid_t child = ::fork();
+  if (child == 0) {
+    clrt::install_signal_cleanup();
+    clrt::ScratchFile scratch("out.sgi");
+    std::ofstream(scratch.path()) << "partial";
+    const std::string p = scratch.path() + "\n";
+    if (::write(fds[1], p.data(), p.size()) < 0) ::_exit(99);
+    ::raise(SIGTERM);
+    ::_exit(98);  // not reached
+  }
+  ::close(fds[1]);
+  char buf[4096] = {0};
+  ssize_t n = ::read(fds[0], buf, sizeof buf - 1);
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  REQUIRE(n > 0);
+  const std::string path(buf, size_t(n) - 1);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 143);
+  CHECK_FALSE(fs::exists(path));
+  CHECK_FALSE(fs::exists(fs::path(path).parent_path()));
+}
+
+TEST_CASE("SIGINT during a render: exit 130, one line, nothing written", "[cli][hardening]") {
+  TempDir dir;
+  const std::string out = dir / "out.png";
+  // The reference engine at 4096x4096 takes seconds: interrupt it.
+  const std::string cmd = clrt_test::shell_quote(CLRT_BINARY) + " render " + clrt_test::shell_quote(kDemo) +
+                          " --engine reference --width 4096 --height 4096 -o " + clrt_test::shell_quote(out) +
+                          " 2>" + clrt_test::shell_quote(dir / "err.txt");
+  pid_t child = ::fork();
+  if (child == 0) {
+    ::execl("/bin/sh", "sh", "-c", ("exec " + cmd).c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  ::kill(child, SIGINT);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  CHECK(clrt_test::slurp(dir / "err.txt") == "clrt: error: interrupted by SIGINT\n");
+  CHECK(dir.entries() == std::vector<std::string>{"err.txt"});
+}
+
+// ---- 10. user input that used to reach the "bug" exit status -----------------
+
+TEST_CASE("odd user input is bad input (exit 2), never an internal error", "[cli][hardening]") {
+  TempDir dir;
+  const std::string out = dir / "out.png";
+  check_error(run_clrt({"render", kDemo, "-o", out, "--device", "99999999999999999999999"}), {"unknown device"});
+  // A NUL byte: nothing after it may be ignored.
+  check_error(run_clrt({"render", dir.write("nul.json", std::string("{\"spheres\": []}\0{\"x\":1}", 24)), "-o", out}),
+              {"NUL byte at offset 15"});
+  // Duplicate keys, at any depth.
+  check_error(run_clrt({"render", dir.write("dup.json", R"({"epsilon": 0.1, "epsilon": 0.2})"), "-o", out}),
+              {"duplicate key \"epsilon\""});
+  check_error(run_clrt({"render",
+                        dir.write("dup2.json", R"({"spheres": [{"center": [0,0,3], "center": [0,0,4], "radius": 1,
+                                                    "color": [1,1,1]}]})"),
+                        "-o", out}),
+              {"duplicate key \"center\""});
+  // A huge unknown key is echoed cut short.
+  RunResult big = run_clrt({"render", dir.write("big.json", "{\"" + std::string(100000, 'k') + "\": 1}"), "-o", out});
+  check_error(big, {"... (100000 bytes)"});
+  CHECK(big.err.size() < 400);
+  CHECK_FALSE(fs::exists(out));
+  // --json with a scene path that is not UTF-8: replacement characters, exit 0.
+  const std::string odd = dir / "sc\xff\xfe.json";
+  fs::copy_file(kDemo, odd);
+  RunResult j = run_clrt({"compare", odd, "--width", "8", "--height", "8", "--json"});
+  INFO(j.err);
+  CHECK(j.status == 0);
+  CHECK_NOTHROW(nlohmann::json::parse(j.out));
+  // A plot path that cannot be written fails before the work, both plots.
+  check_error(run_clrt({"sweep", kDemo, "--depths", "0:1", "--width", "8", "--height", "8", "--plot",
+                        dir / "no/such/dir/p.png"}),
+              {"does not exist"});
+}
