@@ -486,3 +486,41 @@ TEST_CASE("odd user input is bad input (exit 2), never an internal error", "[cli
                         dir / "no/such/dir/p.png"}),
               {"does not exist"});
 }
+
+TEST_CASE("another user's file in a sticky directory fails before the work", "[cli][hardening]") {
+  // rename() may not replace another user's file in a sticky directory such
+  // as /tmp; that used to surface only after the render. Needs root to act
+  // as a second user (CI runs as root).
+  if (::geteuid() != 0) {
+    WARN("not root: cannot act as a second user; skipped");
+    return;
+  }
+  TempDir dir;
+  const std::string sticky = dir / "sticky";
+  fs::create_directory(sticky);
+  ::chmod(dir.path().c_str(), 0755);
+  ::chmod(sticky.c_str(), 01777);
+  const std::string out = sticky + "/out.png";
+  std::ofstream(out) << "root's file";
+  const std::string err = dir / "err.txt";
+  pid_t child = ::fork();
+  if (child == 0) {
+    const int fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) ::_exit(96);
+    ::dup2(fd, STDERR_FILENO);
+    if (::setgid(65534) != 0 || ::setuid(65534) != 0) ::_exit(97);  // nobody
+    ::execl(CLRT_BINARY, CLRT_BINARY, "render", kDemo.c_str(), "-o", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  REQUIRE(WIFEXITED(status));
+  if (WEXITSTATUS(status) >= 96) {
+    WARN("could not run clrt as nobody (status " << WEXITSTATUS(status) << "); skipped");
+    return;
+  }
+  CHECK(WEXITSTATUS(status) == 2);
+  CHECK_THAT(clrt_test::slurp(err), Contains(out + ": cannot write output: it belongs to another user in the sticky directory"));
+  CHECK(clrt_test::slurp(out) == "root's file");
+  CHECK(entries(sticky) == std::vector<std::string>{"out.png"});
+}
