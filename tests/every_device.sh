@@ -6,6 +6,8 @@
 # their devices themselves. Registered with CTest (CMakeLists.txt).
 set -euo pipefail
 clrt=$1 tests=$2
+# Mesa rusticl exposes its llvmpipe device only when asked.
+export RUSTICL_ENABLE=${RUSTICL_ENABLE:-swrast}
 # Device rows start with the index; the default device's index carries a '*'.
 mapfile -t others < <("$clrt" devices | awk '$1 ~ /^[0-9]+$/ {print $1}')
 if [ ${#others[@]} -eq 0 ]; then
