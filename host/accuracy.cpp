@@ -11,20 +11,22 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "launch_timing.hpp"
-#include "stats.hpp"
 #include "cl_renderer.hpp"
 #include "compare_json.hpp"
 #include "device.hpp"
 #include "error.hpp"
+#include "launch_timing.hpp"
 #include "output_file.hpp"
 #include "plot.hpp"
 #include "precision_support.hpp"
 #include "reference.hpp"
+#include "stats.hpp"
 
 namespace clrt {
 
-std::string AccuracyRow::time_source() const { return clrt::time_source(host_timed_launches, launches); }
+std::string AccuracyRow::time_source() const {
+  return clrt::time_source(host_timed_launches, launches);
+}
 
 std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes, const AccuracySettings& s) {
   DeviceInfo dev = select_device(s.device);
@@ -171,7 +173,8 @@ std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySe
 
 void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path) {
   std::ostringstream f;
-  f << "scene,variant,depth,supported,kernel_ms_median,kernel_time_source,pixels,off_by_gt1,percent_off_by_gt1,max_abs_8bit,"
+  f << "scene,variant,depth,supported,kernel_ms_median,kernel_time_source,pixels,off_by_gt1,percent_off_by_gt1,max_abs_"
+       "8bit,"
        "max_abs_float,rmse_8bit,rmse_float,psnr_8bit,psnr_float,nan_inf,hit_flips,shadow_flips\n";
   for (const auto& r : rows) {
     const Comparison& e = r.error;
@@ -180,9 +183,9 @@ void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string&
       f << ",,,,,,,,,,,,,\n";
       continue;
     }
-    f << r.median_ms << ',' << r.time_source() << ',' << e.pixels << ',' << e.off_by_gt1 << ',' << e.percent_off_by_gt1() << ',' << e.max_abs_8bit
-      << ',' << e.max_abs_float << ',' << e.rmse_8bit << ',' << e.rmse_float << ','
-      << (std::isinf(e.psnr_8bit) ? "inf" : std::to_string(e.psnr_8bit)) << ','
+    f << r.median_ms << ',' << r.time_source() << ',' << e.pixels << ',' << e.off_by_gt1 << ','
+      << e.percent_off_by_gt1() << ',' << e.max_abs_8bit << ',' << e.max_abs_float << ',' << e.rmse_8bit << ','
+      << e.rmse_float << ',' << (std::isinf(e.psnr_8bit) ? "inf" : std::to_string(e.psnr_8bit)) << ','
       << (std::isinf(e.psnr_float) ? "inf" : std::to_string(e.psnr_float)) << ',' << e.nan_inf << ',' << e.hit_flips
       << ',' << e.shadow_flips << '\n';
   }

@@ -31,7 +31,7 @@ struct AccuracyRow {
   double median_ms = 0;
   int launches = 0, host_timed_launches = 0;  // over the timed frames (launch_timing.hpp)
   std::string time_source() const;            // "events", "host" or "mixed"
-  Comparison error;  // against the reference
+  Comparison error;                           // against the reference
 };
 
 struct NamedScene {

@@ -30,14 +30,14 @@ void add_render_command(CLI::App& app) {
     // The report goes to stderr when the image itself goes to stdout.
     std::FILE* report = check_output(*out).kind == OutputKind::File ? stdout : stderr;
     if (o->engine == "opencl")
-      std::fprintf(report, "%s: %dx%d depth %d on %s: kernel %.2f ms%s, build %.1f ms%s\n", out->c_str(), o->width, o->height,
-                  depth, run.device.c_str(), run.cl.kernel_ms,
-                  time_source_note(run.cl.host_timed_launches, run.cl.launches).c_str(), run.cl.build_ms,
-                  run.cl.build_cached ? " (cached)" : "");
+      std::fprintf(report, "%s: %dx%d depth %d on %s: kernel %.2f ms%s, build %.1f ms%s\n", out->c_str(), o->width,
+                   o->height, depth, run.device.c_str(), run.cl.kernel_ms,
+                   time_source_note(run.cl.host_timed_launches, run.cl.launches).c_str(), run.cl.build_ms,
+                   run.cl.build_cached ? " (cached)" : "");
     if (run.shares.size() > 1) print_shares(run.shares, report);
     if (o->engine != "opencl")
-      std::fprintf(report, "%s: %dx%d depth %d with the reference renderer: %.1f ms\n", out->c_str(), o->width, o->height, depth,
-                  run.wall_ms);
+      std::fprintf(report, "%s: %dx%d depth %d with the reference renderer: %.1f ms\n", out->c_str(), o->width,
+                   o->height, depth, run.wall_ms);
   });
 }
 

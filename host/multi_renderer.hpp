@@ -25,10 +25,10 @@ class MultiRenderer {
   size_t size() const { return renderers_.size(); }
   ClRenderer& renderer(size_t i) { return *renderers_[i]; }
   RayCounts ray_counts() const;
-  double kernel_ms() const;  // summed over devices
-  int launches() const;      // summed over devices
+  double kernel_ms() const;         // summed over devices
+  int launches() const;             // summed over devices
   int host_timed_launches() const;  // of those, timed by the host clock (launch_timing.hpp)
-  double build_ms() const;   // longest build (they run in parallel)
+  double build_ms() const;          // longest build (they run in parallel)
   double upload_ms() const;
   double wall_ms() const { return wall_ms_; }
 

@@ -32,9 +32,15 @@ void register_path(int slot, const std::string& p) {
   std::memcpy(g_paths[slot], p.c_str(), p.size() + 1);
   g_set[slot].store(true);
 }
-void unregister_path(int slot) { g_set[slot].store(false); }
-void register_temp(const std::string& p) { register_path(0, p); }
-void unregister_temp() { unregister_path(0); }
+void unregister_path(int slot) {
+  g_set[slot].store(false);
+}
+void register_temp(const std::string& p) {
+  register_path(0, p);
+}
+void unregister_temp() {
+  unregister_path(0);
+}
 
 void on_signal(int sig) {
   if (g_set[0].load()) ::unlink(g_paths[0]);
@@ -57,7 +63,9 @@ fs::path directory_of(const fs::path& target) {
   throw UserError(path + ": cannot write " + what + ": " + why);
 }
 
-std::string errno_text(int e) { return std::strerror(e); }
+std::string errno_text(int e) {
+  return std::strerror(e);
+}
 
 // Creates an empty temp file exclusively in `dir` (random name; O_EXCL so an
 // existing name - a planted symlink - makes it fail and retry, never follow).
@@ -93,7 +101,9 @@ bool write_all(int fd, const std::string& bytes, int& err) {
 ScratchFile::ScratchFile(const std::string& name) {
   const char* env = std::getenv("TMPDIR");
   std::string tmpl = std::string(env && *env ? env : "/tmp") + "/clrt-XXXXXX";
-  if (!::mkdtemp(&tmpl[0])) throw UserError("cannot create a scratch directory in " + tmpl.substr(0, tmpl.size() - 12) + ": " + errno_text(errno));
+  if (!::mkdtemp(&tmpl[0]))
+    throw UserError("cannot create a scratch directory in " + tmpl.substr(0, tmpl.size() - 12) + ": " +
+                    errno_text(errno));
   dir_ = tmpl;
   path_ = dir_ + "/" + name;
   register_path(1, dir_);
@@ -168,14 +178,16 @@ OutputTarget check_output(const std::string& path, const std::string& what) {
   std::string probe;
   int fd = create_temp(dir, probe);
   if (fd < 0) fail(path, what, "cannot create a file in " + dir.string() + ": " + errno_text(errno));
+  register_temp(probe);
   ::close(fd);
   ::unlink(probe.c_str());
+  unregister_temp();
   // A sticky directory (/tmp) lets rename() replace only our own files (or
   // any file in a directory we own).
-  struct stat dst {}, fst {};
+  struct stat dst = {};
+  struct stat fst = {};
   if (fs::exists(st) && ::stat(dir.c_str(), &dst) == 0 && (dst.st_mode & S_ISVTX) &&
-      ::stat(target.c_str(), &fst) == 0 && fst.st_uid != ::geteuid() && dst.st_uid != ::geteuid() &&
-      ::geteuid() != 0)
+      ::stat(target.c_str(), &fst) == 0 && fst.st_uid != ::geteuid() && dst.st_uid != ::geteuid() && ::geteuid() != 0)
     fail(path, what, "it belongs to another user in the sticky directory " + dir.string());
   return t;
 }
@@ -183,8 +195,7 @@ OutputTarget check_output(const std::string& path, const std::string& what) {
 void write_output(const std::string& path, const std::string& bytes, const std::string& what) {
   const OutputTarget t = check_output(path, what);
   if (t.kind == OutputKind::Stdout || t.kind == OutputKind::Stream) {
-    int fd = t.kind == OutputKind::Stdout ? STDOUT_FILENO
-                                          : ::open(t.resolved.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+    int fd = t.kind == OutputKind::Stdout ? STDOUT_FILENO : ::open(t.resolved.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
     if (fd < 0) fail(path, what, errno_text(errno));
     int err = 0;
     bool ok = write_all(fd, bytes, err);

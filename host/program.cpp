@@ -86,7 +86,7 @@ cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const s
   if (flags.verbose) {
     std::cerr << "clrt: build options (" << dev.name << "): " << options << "\n"
               << "clrt: program "
-              << (hit               ? "loaded from cache"
+              << (hit                ? "loaded from cache"
                   : !flags.use_cache ? "built (cache off)"
                   : stored           ? "built, stored in cache"
                                      : "built, not stored in the cache")

@@ -5,9 +5,8 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <cerrno>
-
 #include <atomic>
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -191,8 +190,9 @@ bool cache_begin_load(const ProgramCacheKey& key, std::string* note) {
     fs::remove(path, ec);
     std::ofstream(path + ".bad") << "a load of this entry crashed process " << other << "\n";
     fs::remove(marker, ec);
-    if (note) *note = "discarded the cached binary " + path + ": loading it crashed an earlier run (pid " +
-                      std::to_string(other) + ")";
+    if (note)
+      *note = "discarded the cached binary " + path + ": loading it crashed an earlier run (pid " +
+              std::to_string(other) + ")";
     return false;
   }
   return false;

@@ -104,13 +104,13 @@ std::string sweep_csv(const std::vector<SweepRow>& rows) {
     o << dev << ',' << r.depth << ',' << b.kernel.median << ',' << b.kernel.min << ',' << b.kernel.max << ','
       << b.kernel.mean << ',' << b.kernel.sd << ',' << b.kernel.n << ',' << b.kernel_time_source() << ','
       << r.kernel_ms_delta << ',' << b.frame.median << ',' << b.frame.mean << ',' << b.frame.sd << ','
-      << b.build_warm.median << ',' << b.upload.median << ',' << b.download.median << ','
-      << b.rays.primary << ',' << b.rays.shadow << ',' << b.rays.reflection << ',' << b.rays.total() << ','
-      << b.rays.sphere_tests << ',' << b.mrays_per_s << ',' << b.ns_per_sphere_test << ',' << b.gflops << ','
-      << r.reference_ms << ',' << b.speedup_vs_reference << ',' << b.omp.median << ',' << b.speedup_vs_omp.median
-      << ',' << r.error.differ << ',' << r.error.off_by_gt1 << ',' << r.error.max_abs_8bit << ',' << r.error.rmse_8bit
-      << ',' << r.error.hit_flips << ',' << r.error.shadow_flips << ',' << r.error.nan_inf << ',' << r.change.differ
-      << ',' << r.change.rmse_8bit << ',' << r.change.max_abs_8bit << '\n';
+      << b.build_warm.median << ',' << b.upload.median << ',' << b.download.median << ',' << b.rays.primary << ','
+      << b.rays.shadow << ',' << b.rays.reflection << ',' << b.rays.total() << ',' << b.rays.sphere_tests << ','
+      << b.mrays_per_s << ',' << b.ns_per_sphere_test << ',' << b.gflops << ',' << r.reference_ms << ','
+      << b.speedup_vs_reference << ',' << b.omp.median << ',' << b.speedup_vs_omp.median << ',' << r.error.differ << ','
+      << r.error.off_by_gt1 << ',' << r.error.max_abs_8bit << ',' << r.error.rmse_8bit << ',' << r.error.hit_flips
+      << ',' << r.error.shadow_flips << ',' << r.error.nan_inf << ',' << r.change.differ << ',' << r.change.rmse_8bit
+      << ',' << r.change.max_abs_8bit << '\n';
   }
   return o.str();
 }
@@ -121,9 +121,9 @@ void print_sweep(const std::vector<SweepRow>& rows) {
   for (const auto& r : rows) {
     const BenchResult& b = r.bench;
     std::printf("%-5d %10.2f %+9.2f %12llu %9.1f %9.1f %8.1fx %8zu %7zu %8.4f %9zu %9.4f  %s\n", r.depth,
-                b.kernel.median, r.kernel_ms_delta, (unsigned long long)b.rays.total(), b.mrays_per_s,
-                r.reference_ms, b.speedup_vs_reference, r.error.differ, r.error.off_by_gt1, r.error.rmse_8bit,
-                r.change.differ, r.change.rmse_8bit, r.device.c_str());
+                b.kernel.median, r.kernel_ms_delta, (unsigned long long)b.rays.total(), b.mrays_per_s, r.reference_ms,
+                b.speedup_vs_reference, r.error.differ, r.error.off_by_gt1, r.error.rmse_8bit, r.change.differ,
+                r.change.rmse_8bit, r.device.c_str());
   }
   for (const auto& r : rows)
     if (r.bench.host_timed_launches) {

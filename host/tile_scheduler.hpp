@@ -25,11 +25,11 @@ struct TilePolicy {
 
 struct DeviceShare {
   std::string device;
-  int tiles = 0;         // bands rendered
-  long long rows = 0;    // image rows rendered
-  double kernel_ms = 0;  // sum of kernel times (profiling events, or host time where implausible)
+  int tiles = 0;                // bands rendered
+  long long rows = 0;           // image rows rendered
+  double kernel_ms = 0;         // sum of kernel times (profiling events, or host time where implausible)
   int host_timed_launches = 0;  // launches timed by the host clock (launch_timing.hpp)
-  double busy_ms = 0;    // wall time spent launching, waiting and copying
+  double busy_ms = 0;           // wall time spent launching, waiting and copying
   double max_launch_ms = 0;
 };
 

@@ -14,8 +14,8 @@ using clrt_test::source_path;
 
 TEST_CASE("the worst pixel is located and reported with both values", "[compare]") {
   Image ref(5, 4), test(5, 4);
-  test.rgb[(2 * 5 + 3) * 3 + 1] = 9.0;   // (3, 2): green off by 9
-  test.rgb[(3 * 5 + 0) * 3 + 0] = 4.0;   // (0, 3): red off by 4
+  test.rgb[(2 * 5 + 3) * 3 + 1] = 9.0;  // (3, 2): green off by 9
+  test.rgb[(3 * 5 + 0) * 3 + 0] = 4.0;  // (0, 3): red off by 4
   Comparison c = compare_images(test, ref);
   CHECK(c.max_abs_8bit == 9);
   CHECK(c.worst_x == 3);
@@ -29,7 +29,7 @@ TEST_CASE("thresholds: pass, fail on each limit, NaN always fails", "[compare]")
   Image ref(10, 10), test(10, 10);
   test.rgb[0] = 5;  // one pixel of 100 off by 5 levels: 1%
   Comparison c = compare_images(test, ref);
-  CHECK(judge(c, Thresholds{}).pass);       // no limits: a report, never a fail
+  CHECK(judge(c, Thresholds{}).pass);        // no limits: a report, never a fail
   CHECK(judge(c, Thresholds{1.0, 5}).pass);  // exactly at both limits
   Verdict p = judge(c, Thresholds{0.5, -1});
   CHECK_FALSE(p.pass);
@@ -57,8 +57,8 @@ TEST_CASE("clrt compare exit codes: 0 within the limits, 1 outside, 2 bad input"
   CHECK(fail.one_line_error());
   CHECK(fail.err.rfind("clrt: check failed: compare: ", 0) == 0);
   // JSON carries the verdict and the worst pixel.
-  auto json = run_clrt({"compare", demo, "--width", "80", "--height", "60", "--precision", "naive", "--fail-max", "1",
-                        "--json"});
+  auto json = run_clrt(
+      {"compare", demo, "--width", "80", "--height", "60", "--precision", "naive", "--fail-max", "1", "--json"});
   CHECK(json.status == 1);
   auto j = nlohmann::json::parse(json.out);
   CHECK(j["verdict"] == "fail");

@@ -19,11 +19,11 @@
 
 #include "build_options.hpp"
 #include "cl_renderer.hpp"
-#include "error.hpp"
-#include "precision.hpp"
 #include "cli_run.hpp"
 #include "compare.hpp"
+#include "error.hpp"
 #include "output_file.hpp"
+#include "precision.hpp"
 #include "program_cache.hpp"
 #include "reference.hpp"
 #include "scene.hpp"
@@ -84,8 +84,7 @@ TEST_CASE("output goes through an exclusive temp file: planted links are never f
   // What the old predictable temp name would have been: a planted symlink to
   // a victim file must stay untouched.
   const std::string victim = dir.write("victim.txt", "precious");
-  for (int pid = 1; pid < 200; ++pid)
-    fs::create_symlink(victim, dir / (".out.tmp" + std::to_string(pid) + ".png"));
+  for (int pid = 1; pid < 200; ++pid) fs::create_symlink(victim, dir / (".out.tmp" + std::to_string(pid) + ".png"));
   RunResult r = run_clrt({"render", kDemo, "-o", dir / "out.png", "--width", "16", "--height", "16"});
   INFO(r.err);
   REQUIRE(r.status == 0);
@@ -182,8 +181,9 @@ TEST_CASE("scene values beyond the float32 range are rejected, naming value and 
   CHECK_THAT(error_of(R"({"camera": {"viewport": [1e9, 1]}})"), Contains("camera.viewport[0]"));
   CHECK_THAT(error_of(R"({"camera": {"rotation": [[1e5, 0, 0], [0, 1, 0], [0, 0, 1]], "viewport": [1e4, 1]}})"),
              Contains("camera: ray directions reach 5e+08"));
-  CHECK_THAT(error_of(R"({"lights": [{"type": "ambient", "intensity": 1e30}, {"type": "ambient", "intensity": 1e30}]})"),
-             Contains("lights: the intensities add up to 2e+30, more than 1e+30"));
+  CHECK_THAT(
+      error_of(R"({"lights": [{"type": "ambient", "intensity": 1e30}, {"type": "ambient", "intensity": 1e30}]})"),
+      Contains("lights: the intensities add up to 2e+30, more than 1e+30"));
   CHECK_THAT(error_of("{\"spheres\": [" + sphere.substr(0, sphere.size() - 1) + R"(, "specular": 1e9}]})"),
              Contains("spheres[0].specular: must be at most 1e+08"));
 }
@@ -201,8 +201,8 @@ TEST_CASE("directional light directions are rescaled without overflow or underfl
   const clrt::Image want = clrt::render_reference(unit, 40, 30, 3);
   // A power of two changes nothing: bit-identical.
   CHECK(clrt::render_reference(with_direction("[4, 4, -4]"), 40, 30, 3).rgb == want.rgb);
-  for (const char* d : {"[1e-300, 1e-300, -1e-300]", "[1e300, 1e300, -1e300]", "[5e-324, 5e-324, -5e-324]",
-                        "[0, 1e39, -1e39]"}) {
+  for (const char* d :
+       {"[1e-300, 1e-300, -1e-300]", "[1e300, 1e300, -1e300]", "[5e-324, 5e-324, -5e-324]", "[0, 1e39, -1e39]"}) {
     INFO(d);
     const clrt::Vec3 v = with_direction(d).lights[1].vec;
     const double m = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
@@ -294,7 +294,8 @@ TEST_CASE("a cached binary whose load crashed is never loaded again", "[cli][har
     REQUIRE(clrt::cache_read_entry(entry, key_text, binary));
     std::vector<unsigned char> garbage(binary.size(), 0);
     for (size_t i = 0; i < garbage.size(); ++i) garbage[i] = static_cast<unsigned char>(i * 131 + 7);
-    std::copy(binary.begin(), binary.begin() + std::min<size_t>(16, binary.size()), garbage.begin());  // keep a plausible header
+    std::copy(binary.begin(), binary.begin() + std::min<size_t>(16, binary.size()),
+              garbage.begin());  // keep a plausible header
     REQUIRE(clrt::cache_write_entry(entry, key_text, garbage));
     // The first run may die inside the driver (PoCL asserts); it must not
     // take every later run with it.
@@ -309,7 +310,8 @@ TEST_CASE("a cached binary whose load crashed is never loaded again", "[cli][har
 
 TEST_CASE("verbose output says when nothing was stored in the cache", "[cli][hardening][cache]") {
   TempDir out;
-  RunResult r = run_clrt({"render", kDemo, "--width", "8", "--height", "8", "--verbose", "--no-cache", "-o", out / "a.png"});
+  RunResult r =
+      run_clrt({"render", kDemo, "--width", "8", "--height", "8", "--verbose", "--no-cache", "-o", out / "a.png"});
   CHECK_THAT(r.err, Contains("built (cache off)"));
   // /proc accepts no new directory or file, even for root.
   RunResult ro = run_clrt({"render", kDemo, "--width", "8", "--height", "8", "--verbose", "-o", out / "b.png"},
@@ -374,8 +376,8 @@ TEST_CASE("symlinks, devices, FIFOs and '-' are written to, not replaced", "[cli
     INFO(r.err);
     CHECK(r.status == 0);
     CHECK(fs::is_character_file("/dev/null"));
-    RunResult csv = run_clrt({"sweep", kDemo, "--depths", "0", "--width", "8", "--height", "8", "--repeat", "1",
-                              "--csv", "/dev/null"});
+    RunResult csv = run_clrt(
+        {"sweep", kDemo, "--depths", "0", "--width", "8", "--height", "8", "--repeat", "1", "--csv", "/dev/null"});
     CHECK(csv.status == 0);
     CHECK(fs::is_character_file("/dev/null"));
   }
@@ -435,8 +437,8 @@ TEST_CASE("SIGINT during a render: exit 130, one line, nothing written", "[cli][
   const std::string out = dir / "out.png";
   // The reference engine at 4096x4096 takes seconds: interrupt it.
   const std::string cmd = clrt_test::shell_quote(CLRT_BINARY) + " render " + clrt_test::shell_quote(kDemo) +
-                          " --engine reference --width 4096 --height 4096 -o " + clrt_test::shell_quote(out) +
-                          " 2>" + clrt_test::shell_quote(dir / "err.txt");
+                          " --engine reference --width 4096 --height 4096 -o " + clrt_test::shell_quote(out) + " 2>" +
+                          clrt_test::shell_quote(dir / "err.txt");
   pid_t child = ::fork();
   if (child == 0) {
     ::execl("/bin/sh", "sh", "-c", ("exec " + cmd).c_str(), static_cast<char*>(nullptr));
@@ -464,11 +466,11 @@ TEST_CASE("odd user input is bad input (exit 2), never an internal error", "[cli
   // Duplicate keys, at any depth.
   check_error(run_clrt({"render", dir.write("dup.json", R"({"epsilon": 0.1, "epsilon": 0.2})"), "-o", out}),
               {"duplicate key \"epsilon\""});
-  check_error(run_clrt({"render",
-                        dir.write("dup2.json", R"({"spheres": [{"center": [0,0,3], "center": [0,0,4], "radius": 1,
+  check_error(
+      run_clrt({"render", dir.write("dup2.json", R"({"spheres": [{"center": [0,0,3], "center": [0,0,4], "radius": 1,
                                                     "color": [1,1,1]}]})"),
-                        "-o", out}),
-              {"duplicate key \"center\""});
+                "-o", out}),
+      {"duplicate key \"center\""});
   // A huge unknown key is echoed cut short.
   RunResult big = run_clrt({"render", dir.write("big.json", "{\"" + std::string(100000, 'k') + "\": 1}"), "-o", out});
   check_error(big, {"... (100000 bytes)"});
@@ -520,7 +522,8 @@ TEST_CASE("another user's file in a sticky directory fails before the work", "[c
     return;
   }
   CHECK(WEXITSTATUS(status) == 2);
-  CHECK_THAT(clrt_test::slurp(err), Contains(out + ": cannot write output: it belongs to another user in the sticky directory"));
+  CHECK_THAT(clrt_test::slurp(err),
+             Contains(out + ": cannot write output: it belongs to another user in the sticky directory"));
   CHECK(clrt_test::slurp(out) == "root's file");
   CHECK(entries(sticky) == std::vector<std::string>{"out.png"});
 }

@@ -2,13 +2,12 @@
 // default float32 variant passes every stable-suite case, naive fails where
 // the floor breaks it, fp64 passes everything it runs.
 #include <catch2/catch.hpp>
-
-#include "test_util.hpp"
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
 #include "device.hpp"
 #include "stability.hpp"
+#include "test_util.hpp"
 
 using namespace clrt;
 
