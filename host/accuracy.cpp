@@ -15,6 +15,7 @@
 #include "compare_json.hpp"
 #include "device.hpp"
 #include "error.hpp"
+#include "json_text.hpp"
 #include "launch_timing.hpp"
 #include "output_file.hpp"
 #include "plot.hpp"
@@ -168,14 +169,13 @@ std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySe
     arr.push_back(j);
   }
   out["rows"] = arr;
-  return out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+  return json_text(out);
 }
 
 void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path) {
   std::ostringstream f;
-  f << "scene,variant,depth,supported,kernel_ms_median,kernel_time_source,pixels,off_by_gt1,percent_off_by_gt1,max_abs_"
-       "8bit,"
-       "max_abs_float,rmse_8bit,rmse_float,psnr_8bit,psnr_float,nan_inf,hit_flips,shadow_flips\n";
+  f << "scene,variant,depth,supported,kernel_ms_median,kernel_time_source,pixels,off_by_gt1,percent_off_by_gt1,"
+       "max_abs_8bit,max_abs_float,rmse_8bit,rmse_float,psnr_8bit,psnr_float,nan_inf,hit_flips,shadow_flips\n";
   for (const auto& r : rows) {
     const Comparison& e = r.error;
     f << '"' << r.scene << "\"," << r.variant << ',' << r.depth << ',' << (r.supported ? 1 : 0) << ',';

@@ -22,6 +22,12 @@ MultiRenderer make_renderer(const std::vector<DeviceInfo>& devs, const KernelCon
   return r;
 }
 
+bool all_cached(MultiRenderer& cl) {
+  for (size_t d = 0; d < cl.size(); ++d)
+    if (!cl.renderer(d).timings().build_cached) return false;
+  return true;
+}
+
 double download_ms(MultiRenderer& cl) {
   double ms = 0;
   for (size_t d = 0; d < cl.size(); ++d) ms += cl.renderer(d).timings().download_ms;
@@ -30,7 +36,9 @@ double download_ms(MultiRenderer& cl) {
 
 }  // namespace
 
-std::string BenchResult::kernel_time_source() const { return time_source(host_timed_launches, launches); }
+std::string BenchResult::kernel_time_source() const {
+  return time_source(host_timed_launches, launches);
+}
 
 BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const KernelConfig& cfg,
                       const BenchSettings& s) {
@@ -62,8 +70,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
         if (i == 0) continue;  // the one that stores the entry
         warm.push_back(c.build_ms());
         uploads.push_back(c.upload_ms());
-        for (size_t d = 0; d < c.size(); ++d)
-          r.build_warm_cached = r.build_warm_cached && c.renderer(d).timings().build_cached;
+        r.build_warm_cached = r.build_warm_cached && all_cached(c);
       }
     }
   }
@@ -75,8 +82,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   r.options = cl.renderer(0).options();
   if (warm.empty()) {
     warm.push_back(cl.build_ms());
-    r.build_warm_cached = cfg.use_cache;
-    for (size_t d = 0; d < cl.size(); ++d) r.build_warm_cached = r.build_warm_cached && cl.renderer(d).timings().build_cached;
+    r.build_warm_cached = cfg.use_cache && all_cached(cl);
   }
   uploads.push_back(cl.upload_ms());
   r.image = cl.render();

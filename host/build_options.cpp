@@ -8,7 +8,7 @@ namespace clrt {
 
 int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev) {
   if (!cfg.specialize || cfg.precision == Precision::Fp64) return 1;
-  if (dev.type.find("CPU") == std::string::npos) return 1;
+  if (!is_cpu_type(dev.type)) return 1;
   return dev.native_float_width >= 16 ? 16 : 8;
 }
 

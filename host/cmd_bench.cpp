@@ -5,6 +5,7 @@
 #include "bench.hpp"
 #include "cli_common.hpp"
 #include "error.hpp"
+#include "json_text.hpp"
 
 namespace clrt {
 
@@ -35,7 +36,7 @@ void add_bench_command(CLI::App& app) {
       nlohmann::json j = bench_json(r);
       j["scene"] = o->scene_path;
       j["precision"] = o->precision;
-      std::printf("%s\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+      std::printf("%s\n", json_text(j).c_str());
     } else {
       std::printf("scene          %s, precision %s\n", o->scene_path.c_str(), o->precision.c_str());
       print_bench(r);

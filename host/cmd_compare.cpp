@@ -9,6 +9,7 @@
 #include "compare_json.hpp"
 #include "engine.hpp"
 #include "error.hpp"
+#include "json_text.hpp"
 #include "launch_timing.hpp"
 
 namespace clrt {
@@ -84,7 +85,7 @@ void add_compare_command(CLI::App& app) {
         j["fail_max"] = limits->fail_max >= 0 ? nlohmann::json(limits->fail_max) : nlohmann::json();
         j["verdict"] = verdict.pass ? "pass" : "fail";
       }
-      std::printf("%s\n", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+      std::printf("%s\n", json_text(j).c_str());
     } else {
       std::printf("scene          %s  %dx%d  depth %d  precision %s\n", o->scene_path.c_str(), o->width, o->height,
                   depth, classified ? o->precision.c_str() : "-");

@@ -21,14 +21,14 @@ void add_render_command(CLI::App& app) {
       ->required();
   cmd->callback([o, out] {
     o->validate();
-    check_output_format(*out);  // fail before rendering
+    const OutputTarget target = check_output_format(*out);  // fail before rendering
     Scene scene = load_scene(o->scene_path);
     int depth = o->effective_depth(scene);
     EngineRun run;
     Image img = run_engine(o->engine, scene, *o, depth, &run);
     write_image(img, *out);
     // The report goes to stderr when the image itself goes to stdout.
-    std::FILE* report = check_output(*out).kind == OutputKind::File ? stdout : stderr;
+    std::FILE* report = target.kind == OutputKind::File ? stdout : stderr;
     if (o->engine == "opencl")
       std::fprintf(report, "%s: %dx%d depth %d on %s: kernel %.2f ms%s, build %.1f ms%s\n", out->c_str(), o->width,
                    o->height, depth, run.device.c_str(), run.cl.kernel_ms,

@@ -8,6 +8,7 @@
 #include "compare_json.hpp"
 #include "device.hpp"
 #include "error.hpp"
+#include "json_text.hpp"
 #include "stability.hpp"
 
 namespace clrt {
@@ -75,7 +76,7 @@ void add_stability_command(CLI::App& app) {
                             {"results", rows},
                             {"summary", summary},
                             {"unmet_expectations", unmet}};
-      std::printf("%s\n", out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+      std::printf("%s\n", json_text(out).c_str());
     } else {
       std::printf("device %s, %dx%d; pass = at most %.2f%% of pixels off by > 1 level and %zu NaN/Inf pixels\n",
                   device.c_str(), o->width, o->height, kStabilityMaxPercentOffByGt1, kStabilityMaxNanPixels);

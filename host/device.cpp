@@ -110,7 +110,7 @@ std::vector<DeviceInfo> list_devices() {
 
 size_t default_device(const std::vector<DeviceInfo>& all) {
   for (size_t i = 0; i < all.size(); ++i)
-    if (all[i].type.find("GPU") != std::string::npos) return i;
+    if (is_gpu_type(all[i].type)) return i;
   return 0;
 }
 

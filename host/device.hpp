@@ -20,6 +20,15 @@ struct DeviceInfo {
   cl_uint native_float_width = 0;
 };
 
+// Device kinds by DeviceInfo::type ("CPU", "GPU", "ACCELERATOR", ...): the
+// one place that reads it.
+inline bool is_cpu_type(const std::string& type) {
+  return type.find("CPU") != std::string::npos;
+}
+inline bool is_gpu_type(const std::string& type) {
+  return type.find("GPU") != std::string::npos;
+}
+
 // Every device of every platform. Throws DeviceError("no OpenCL platform ...")
 // when the ICD loader finds none.
 std::vector<DeviceInfo> list_devices();

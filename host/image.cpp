@@ -39,10 +39,19 @@ bool is_float_format(const std::string& path) {
 
 // The name whose extension picks the encoder: OUT itself, or "out.png" for
 // standard output and devices named without an extension (/dev/stdout).
-std::string format_name(const std::string& path) {
-  return extension_of(path).empty() && path != "" && (path == "-" || check_output(path).kind != OutputKind::File)
-             ? std::string("out.png")
-             : path;
+std::string format_name(const std::string& path, OutputKind kind) {
+  return extension_of(path).empty() && kind != OutputKind::File ? std::string("out.png") : path;
+}
+
+// UserError unless OpenImageIO has an encoder for OUT (of this kind).
+void check_image_format(const std::string& path, OutputKind kind) {
+  const std::string ext = extension_of(path);
+  if (ext.empty() && kind == OutputKind::File)
+    throw UserError(path + ": output has no file extension (use .png, .ppm, .exr, ...)");
+  if (!OIIO::ImageOutput::create(format_name(path, kind))) {
+    (void)OIIO::geterror();
+    throw UserError(path + ": unknown image format \"." + ext + "\" (use .png, .ppm, .exr, ...)");
+  }
 }
 
 [[noreturn]] void encode_failed(const std::string& path, std::string err) {
@@ -54,8 +63,8 @@ std::string format_name(const std::string& path) {
 // Encodes `pixels` (float or uint8 RGB) in memory - or, for the few encoders
 // that can only write to a path, in a private scratch file - and returns the
 // file's bytes. Nothing is written to OUT here: write_output() does that.
-std::string encode(const std::string& path, int w, int h, OIIO::TypeDesc type, const void* data) {
-  const std::string name = format_name(path);
+std::string encode(const std::string& path, OutputKind kind, int w, int h, OIIO::TypeDesc type, const void* data) {
+  const std::string name = format_name(path, kind);
   OIIO::ImageSpec spec(w, h, 3, type);
   std::vector<unsigned char> buf;
   OIIO::Filesystem::IOVecOutput memory(buf);
@@ -74,24 +83,20 @@ std::string encode(const std::string& path, int w, int h, OIIO::TypeDesc type, c
   return scratch.read();
 }
 
+// (Callers checked OUT before the work with check_output_format();
+// write_output() meets any change since.)
 void write_pixels(const std::string& path, int w, int h, OIIO::TypeDesc type, const void* data) {
-  check_output_format(path);
-  write_output(path, encode(path, w, h, type, data));
+  const OutputKind kind = resolve_output(path).kind;
+  check_image_format(path, kind);
+  write_output(path, encode(path, kind, w, h, type, data));
 }
 
 }  // namespace
 
-void check_output_format(const std::string& path) {
-  if (path.empty()) throw UserError("output path is empty");
+OutputTarget check_output_format(const std::string& path) {
   const OutputTarget target = check_output(path);
-  const std::string ext = extension_of(path);
-  if (ext.empty() && target.kind == OutputKind::File)
-    throw UserError(path + ": output has no file extension (use .png, .ppm, .exr, ...)");
-  auto out = OIIO::ImageOutput::create(format_name(path));
-  if (!out) {
-    (void)OIIO::geterror();
-    throw UserError(path + ": unknown image format \"." + ext + "\" (use .png, .ppm, .exr, ...)");
-  }
+  check_image_format(path, target.kind);
+  return target;
 }
 
 void write_image(const Image& img, const std::string& path) {

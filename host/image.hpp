@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "output_file.hpp"
+
 namespace clrt {
 
 struct Image {
@@ -27,8 +29,9 @@ std::vector<uint8_t> to_u8(const Image& img);
 
 // Checks, before rendering, that OUT can be written: a non-empty path whose
 // extension OpenImageIO can write, in an existing directory that accepts new
-// files, and not itself a directory. Throws UserError naming OUT otherwise.
-void check_output_format(const std::string& path);
+// files, and not itself a directory (output_file.hpp: check_output). Throws
+// UserError naming OUT otherwise; returns what OUT is (file, device, stdout).
+OutputTarget check_output_format(const std::string& path);
 // Writes via a temporary file in the same directory and an atomic rename, so
 // a failed write never leaves a half-written OUT. EXR (and other float
 // formats) get the unclamped float colour; the rest get 8-bit sRGB values.

@@ -144,7 +144,7 @@ void install_signal_cleanup() {
   for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) ::sigaction(sig, &sa, nullptr);
 }
 
-OutputTarget check_output(const std::string& path, const std::string& what) {
+OutputTarget resolve_output(const std::string& path, const std::string& what) {
   if (path.empty()) throw UserError(what + " path is empty");
   OutputTarget t;
   t.path = t.resolved = path;
@@ -173,6 +173,14 @@ OutputTarget check_output(const std::string& path, const std::string& what) {
   }
   const fs::path dir = directory_of(target);
   if (!fs::is_directory(dir, ec)) fail(path, what, "directory " + dir.string() + " does not exist");
+  return t;
+}
+
+OutputTarget check_output(const std::string& path, const std::string& what) {
+  const OutputTarget t = resolve_output(path, what);
+  if (t.kind != OutputKind::File) return t;
+  const fs::path target(t.resolved), dir = directory_of(target);
+  std::error_code ec;
   // Create and remove a temp file: the only test that holds for root, on
   // read-only mounts and in /proc.
   std::string probe;
@@ -186,14 +194,15 @@ OutputTarget check_output(const std::string& path, const std::string& what) {
   // any file in a directory we own).
   struct stat dst = {};
   struct stat fst = {};
-  if (fs::exists(st) && ::stat(dir.c_str(), &dst) == 0 && (dst.st_mode & S_ISVTX) &&
+  if (fs::exists(target, ec) && ::stat(dir.c_str(), &dst) == 0 && (dst.st_mode & S_ISVTX) &&
       ::stat(target.c_str(), &fst) == 0 && fst.st_uid != ::geteuid() && dst.st_uid != ::geteuid() && ::geteuid() != 0)
     fail(path, what, "it belongs to another user in the sticky directory " + dir.string());
   return t;
 }
 
 void write_output(const std::string& path, const std::string& bytes, const std::string& what) {
-  const OutputTarget t = check_output(path, what);
+  // No probe here: creating the temp file below fails with the same reason.
+  const OutputTarget t = resolve_output(path, what);
   if (t.kind == OutputKind::Stdout || t.kind == OutputKind::Stream) {
     int fd = t.kind == OutputKind::Stdout ? STDOUT_FILENO : ::open(t.resolved.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
     if (fd < 0) fail(path, what, errno_text(errno));
@@ -217,18 +226,14 @@ void write_output(const std::string& path, const std::string& bytes, const std::
   // full disk, NFS write-back).
   if (ok && ::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) ok = false, err = errno;
   if (::close(fd) != 0 && ok) ok = false, err = errno;
-  if (ok && ::rename(tmp.c_str(), target.c_str()) != 0) {
-    const int e = errno;
-    ::unlink(tmp.c_str());
-    unregister_temp();
-    fail(path, what, "rename failed: " + errno_text(e));
-  }
-  if (!ok) {
-    ::unlink(tmp.c_str());
-    unregister_temp();
-    fail(path, what, errno_text(err));
-  }
+  std::string why;
+  if (!ok)
+    why = errno_text(err);
+  else if (::rename(tmp.c_str(), target.c_str()) != 0)
+    why = "rename failed: " + errno_text(errno);
+  if (!why.empty()) ::unlink(tmp.c_str());
   unregister_temp();
+  if (!why.empty()) fail(path, what, why);
 }
 
 }  // namespace clrt

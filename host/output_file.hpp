@@ -31,6 +31,11 @@ struct OutputTarget {
   OutputKind kind = OutputKind::File;
 };
 
+// Classifies `path` (following a symlink OUT to its target) without touching
+// the file system beyond stat: UserError naming `path` when it is empty, a
+// directory, a block device, or in a directory that does not exist.
+OutputTarget resolve_output(const std::string& path, const std::string& what = "output");
+
 // Throws UserError naming `path` unless it can be written: non-empty, an
 // existing directory that accepts new files (probed by creating and removing
 // a temp file; permission bits say nothing for root), not a directory, and -

@@ -26,7 +26,7 @@ PeakFlops measure_peak_flops(const DeviceInfo& dev, int repeat) {
     cl::Kernel k(prog, "peak_flops");
     // Enough work-items to occupy every compute unit: GPUs need thousands in
     // flight per unit, CPU drivers run work-groups on worker threads.
-    const bool cpu = dev.type.find("CPU") != std::string::npos;
+    const bool cpu = is_cpu_type(dev.type);
     const size_t items = size_t(std::max<cl_uint>(1, dev.compute_units)) * (cpu ? 64 : 2048);
     cl::Buffer out(ctx, CL_MEM_WRITE_ONLY, items * sizeof(float));
     k.setArg(0, out);

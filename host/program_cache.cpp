@@ -166,35 +166,29 @@ bool cache_begin_load(const ProgramCacheKey& key, std::string* note) {
   std::error_code ec;
   if (fs::exists(path + ".bad", ec)) return false;
   const std::string marker = path + ".loading";
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    int fd = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
-    if (fd >= 0) {
-      const std::string pid = std::to_string(::getpid()) + "\n";
-      const bool written = ::write(fd, pid.data(), pid.size()) == ssize_t(pid.size());
-      ::close(fd);
-      if (!written) {
-        ::unlink(marker.c_str());
-        return false;
-      }
-      return true;
-    }
-    if (errno != EEXIST) return false;  // cannot mark: do not load unguarded
-    long other = 0;
-    {
-      std::ifstream in(marker);
-      in >> other;
-    }
-    if (process_alive(other)) return false;  // being loaded right now: build from source
-    // The process that loaded this entry last did not finish: it crashed in
-    // the driver. Never load this entry again.
-    fs::remove(path, ec);
-    std::ofstream(path + ".bad") << "a load of this entry crashed process " << other << "\n";
-    fs::remove(marker, ec);
-    if (note)
-      *note = "discarded the cached binary " + path + ": loading it crashed an earlier run (pid " +
-              std::to_string(other) + ")";
-    return false;
+  int fd = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
+  if (fd >= 0) {
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    const bool written = ::write(fd, pid.data(), pid.size()) == ssize_t(pid.size());
+    ::close(fd);
+    if (!written) ::unlink(marker.c_str());
+    return written;
   }
+  if (errno != EEXIST) return false;  // cannot mark: do not load unguarded
+  long other = 0;
+  {
+    std::ifstream in(marker);
+    in >> other;
+  }
+  if (process_alive(other)) return false;  // being loaded right now: build from source
+  // The process that loaded this entry last did not finish: it crashed in
+  // the driver. Never load this entry again.
+  fs::remove(path, ec);
+  std::ofstream(path + ".bad") << "a load of this entry crashed process " << other << "\n";
+  fs::remove(marker, ec);
+  if (note)
+    *note = "discarded the cached binary " + path + ": loading it crashed an earlier run (pid " +
+            std::to_string(other) + ")";
   return false;
 }
 

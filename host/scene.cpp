@@ -91,9 +91,8 @@ class Parser {
   // Long strings are cut (a 50 MB key must not be echoed in full).
   static std::string quoted(const std::string& s) {
     constexpr size_t kMaxEcho = 64;
-    if (s.size() <= kMaxEcho) return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
-    return json(s.substr(0, kMaxEcho)).dump(-1, ' ', false, json::error_handler_t::replace) + "... (" +
-           std::to_string(s.size()) + " bytes)";
+    const std::string shown = json(s.substr(0, kMaxEcho)).dump(-1, ' ', false, json::error_handler_t::replace);
+    return s.size() <= kMaxEcho ? shown : shown + "... (" + std::to_string(s.size()) + " bytes)";
   }
   static std::string fmt(double v) {
     std::ostringstream os;

@@ -17,7 +17,7 @@ namespace clrt {
 
 double launch_limit_ms(const TilePolicy& policy, const std::string& device_type) {
   if (policy.max_launch_ms >= 0) return policy.max_launch_ms;
-  return device_type.find("CPU") != std::string::npos ? 0.0 : 500.0;
+  return is_cpu_type(device_type) ? 0.0 : 500.0;
 }
 
 namespace {

@@ -1,0 +1,14 @@
+// json_text.hpp - JSON as clrt prints it: indented by 2, and never throwing
+// on strings that are not UTF-8 (a scene path or --cl-options from the user):
+// such bytes become U+FFFD instead of an exception after all the work.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace clrt {
+
+inline std::string json_text(const nlohmann::json& j) {
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+}  // namespace clrt
