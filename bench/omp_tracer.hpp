@@ -5,7 +5,7 @@
 #pragma once
 #include <vector>
 
-#include "scene.hpp"
+#include "scene/scene.hpp"
 
 namespace clrt_bench {
 

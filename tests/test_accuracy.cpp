@@ -5,10 +5,10 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "accuracy.hpp"
+#include "eval/accuracy.hpp"
 #include "cli_run.hpp"
-#include "device.hpp"
-#include "precision_support.hpp"
+#include "cl/device.hpp"
+#include "render/precision_support.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

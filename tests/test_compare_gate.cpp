@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
-#include "compare.hpp"
+#include "eval/compare.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

@@ -17,16 +17,16 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "build_options.hpp"
-#include "cl_renderer.hpp"
+#include "render/build_options.hpp"
+#include "render/cl_renderer.hpp"
 #include "cli_run.hpp"
-#include "compare.hpp"
-#include "error.hpp"
-#include "output_file.hpp"
-#include "precision.hpp"
-#include "program_cache.hpp"
-#include "reference.hpp"
-#include "scene.hpp"
+#include "eval/compare.hpp"
+#include "util/error.hpp"
+#include "util/output_file.hpp"
+#include "render/precision.hpp"
+#include "cl/program_cache.hpp"
+#include "reference/reference.hpp"
+#include "scene/scene.hpp"
 #include "test_util.hpp"
 
 using Catch::Matchers::Contains;

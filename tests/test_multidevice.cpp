@@ -4,9 +4,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "cl_renderer.hpp"
+#include "render/cl_renderer.hpp"
 #include "cli_run.hpp"
-#include "multi_renderer.hpp"
+#include "render/multi_renderer.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

@@ -3,13 +3,13 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 
-#include "cl_renderer.hpp"
-#include "compare.hpp"
-#include "device.hpp"
-#include "kernel_source.hpp"
-#include "program.hpp"
-#include "reference.hpp"
-#include "scene_buffers.hpp"
+#include "render/cl_renderer.hpp"
+#include "eval/compare.hpp"
+#include "cl/device.hpp"
+#include "cl/kernel_source.hpp"
+#include "cl/program.hpp"
+#include "reference/reference.hpp"
+#include "render/scene_buffers.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "plot.hpp"
+#include "image/plot.hpp"
 
 using namespace clrt;
 

@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "image.hpp"
-#include "reference.hpp"
+#include "image/image.hpp"
+#include "reference/reference.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

@@ -1,8 +1,8 @@
 // test_scene.cpp - scene parsing, defaults and validation.
 #include <catch2/catch.hpp>
 
-#include "error.hpp"
-#include "scene.hpp"
+#include "util/error.hpp"
+#include "scene/scene.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

@@ -7,10 +7,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "cl_renderer.hpp"
+#include "render/cl_renderer.hpp"
 #include "cli_run.hpp"
-#include "device.hpp"
-#include "program_cache.hpp"
+#include "cl/device.hpp"
+#include "cl/program_cache.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
-#include "device.hpp"
-#include "stability.hpp"
+#include "cl/device.hpp"
+#include "eval/stability.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

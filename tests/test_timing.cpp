@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
-#include "launch_timing.hpp"
-#include "stats.hpp"
+#include "cl/launch_timing.hpp"
+#include "util/stats.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "device.hpp"
-#include "scene.hpp"
+#include "cl/device.hpp"
+#include "scene/scene.hpp"
 
 namespace clrt_test {
 

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "error.hpp"
-#include "scene.hpp"
+#include "util/error.hpp"
+#include "scene/scene.hpp"
 
 namespace {
 

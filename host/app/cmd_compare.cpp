@@ -1,0 +1,122 @@
+// cmd_compare.cpp - `clrt compare SCENE`: OpenCL (or an image file) against
+// the reference, with optional pass/fail thresholds (exit 1 on a fail).
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "app/cli_common.hpp"
+#include "eval/compare.hpp"
+#include "eval/compare_json.hpp"
+#include "app/engine.hpp"
+#include "util/error.hpp"
+#include "util/json_text.hpp"
+#include "cl/launch_timing.hpp"
+
+namespace clrt {
+
+void add_compare_command(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  auto diff = std::make_shared<std::string>();
+  auto image = std::make_shared<std::string>();
+  auto as_json = std::make_shared<bool>(false);
+  auto limits = std::make_shared<Thresholds>();
+  auto* cmd = app.add_subcommand("compare", "Render with both engines and report the error of OpenCL vs reference");
+  add_render_options(cmd, *o, /*with_engine=*/false);
+  cmd->add_option("--diff", *diff, "Write a difference image (x16; magenta = hit flips, cyan = shadow flips)");
+  cmd->add_option("--image", *image,
+                  "Compare this image file (e.g. written by clrt render) instead of rendering with OpenCL; its size "
+                  "sets --width/--height");
+  cmd->add_option("--fail-percent", limits->fail_percent,
+                  "Exit 1 if more than P percent of pixels are off by more than one 8-bit level")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--fail-max", limits->fail_max, "Exit 1 if any 8-bit channel differs by more than L levels")
+      ->check(CLI::Range(0, 255));
+  cmd->add_flag("--json", *as_json, "Print one JSON object");
+  cmd->callback([o, diff, image, as_json, limits] {
+    Image img;
+    if (!image->empty()) {
+      img = read_image(*image, kMaxImageEdge, kMaxImagePixels);
+      o->width = img.width;
+      o->height = img.height;
+    }
+    o->validate();
+    if (!diff->empty()) check_output_format(*diff);
+    Scene scene = load_scene(o->scene_path);
+    int depth = o->effective_depth(scene);
+    EngineRun ref_run, cl_run;
+    Image ref = run_engine("reference", scene, *o, depth, &ref_run);
+    const bool classified = image->empty();  // an image file has no hit/shadow data
+    if (classified) {
+      img = run_engine("opencl", scene, *o, depth, &cl_run);
+    } else {
+      img.hit = ref.hit;
+      img.shadowed = ref.shadowed;
+    }
+    Comparison c = compare_images(img, ref);
+    const Verdict verdict = judge(c, *limits);
+    if (!diff->empty()) write_rgb8(diff_image(img, ref), img.width, img.height, *diff);
+    const std::string source = time_source(cl_run.cl.host_timed_launches, cl_run.cl.launches);
+    if (*as_json) {
+      nlohmann::json j = {{"scene", o->scene_path},
+                          {"width", o->width},
+                          {"height", o->height},
+                          {"depth", depth},
+                          {"reference_ms", ref_run.wall_ms},
+                          {"worst_pixel",
+                           {{"x", c.worst_x},
+                            {"y", c.worst_y},
+                            {"value", {c.worst_test[0], c.worst_test[1], c.worst_test[2]}},
+                            {"reference", {c.worst_reference[0], c.worst_reference[1], c.worst_reference[2]}}}}};
+      if (classified)
+        j.update({{"precision", o->precision},
+                  {"device", cl_run.device},
+                  {"build_options", cl_run.options},
+                  {"opencl_kernel_ms", cl_run.cl.kernel_ms},
+                  {"opencl_kernel_time_source", source},
+                  {"opencl_build_ms", cl_run.cl.build_ms},
+                  {"opencl_build_cached", cl_run.cl.build_cached},
+                  {"opencl_total_ms", cl_run.wall_ms}});
+      else
+        j["image"] = *image;
+      j.update(comparison_json(c));
+      if (!classified) j["hit_flips"] = j["shadow_flips"] = nullptr;
+      if (limits->any()) {
+        j["fail_percent"] = limits->fail_percent >= 0 ? nlohmann::json(limits->fail_percent) : nlohmann::json();
+        j["fail_max"] = limits->fail_max >= 0 ? nlohmann::json(limits->fail_max) : nlohmann::json();
+        j["verdict"] = verdict.pass ? "pass" : "fail";
+      }
+      std::printf("%s\n", json_text(j).c_str());
+    } else {
+      std::printf("scene          %s  %dx%d  depth %d  precision %s\n", o->scene_path.c_str(), o->width, o->height,
+                  depth, classified ? o->precision.c_str() : "-");
+      if (classified)
+        std::printf("device         %s\n", cl_run.device.c_str());
+      else
+        std::printf("image          %s\n", image->c_str());
+      std::printf("pixels differ  %zu of %zu (%.4f%%)\n", c.differ, c.pixels,
+                  c.pixels ? 100.0 * c.differ / c.pixels : 0.0);
+      std::printf("off by > 1     %zu (%.4f%%)\n", c.off_by_gt1, c.percent_off_by_gt1());
+      std::printf("max abs error  %d levels (8-bit), %.4f (float)\n", c.max_abs_8bit, c.max_abs_float);
+      if (c.max_abs_8bit > 0)
+        std::printf("worst pixel    (%d, %d): %d %d %d, reference %d %d %d\n", c.worst_x, c.worst_y, c.worst_test[0],
+                    c.worst_test[1], c.worst_test[2], c.worst_reference[0], c.worst_reference[1],
+                    c.worst_reference[2]);
+      std::printf("RMSE / PSNR    8-bit %.4f / %s dB, float %.4f / %s dB\n", c.rmse_8bit,
+                  format_psnr(c.psnr_8bit).c_str(), c.rmse_float, format_psnr(c.psnr_float).c_str());
+      if (classified)
+        std::printf("flips          hit %zu, shadow %zu\n", c.hit_flips, c.shadow_flips);
+      else
+        std::printf("flips          n/a (an image file has no hit/shadow data)\n");
+      std::printf("NaN/Inf pixels %zu (reference: %zu)\n", c.nan_inf, c.nan_inf_reference);
+      if (classified)
+        std::printf("time           reference %.1f ms; opencl kernel %.2f ms%s, build %.1f ms%s, render total %.1f ms\n",
+                    ref_run.wall_ms, cl_run.cl.kernel_ms,
+                    time_source_note(cl_run.cl.host_timed_launches, cl_run.cl.launches).c_str(), cl_run.cl.build_ms,
+                    cl_run.cl.build_cached ? " (cached)" : "", cl_run.wall_ms);
+      if (limits->any()) std::printf("verdict        %s\n", verdict.pass ? "PASS" : ("FAIL: " + verdict.reason).c_str());
+    }
+    if (!verdict.pass) throw CheckFailure("compare: " + verdict.reason);
+  });
+}
+
+}  // namespace clrt

@@ -1,0 +1,49 @@
+// cmd_devices.cpp - `clrt devices [--check]`: every platform and device, and
+// optionally a self-test of each.
+#include <cstdio>
+#include <memory>
+
+#include "app/cli_common.hpp"
+#include "cl/device.hpp"
+#include "util/error.hpp"
+#include "cl/launch_timing.hpp"
+#include "render/precision.hpp"
+#include "eval/self_test.hpp"
+
+namespace clrt {
+
+void add_devices_command(CLI::App& app) {
+  auto check = std::make_shared<bool>(false);
+  auto precision = std::make_shared<std::string>("robust");
+  auto* cmd = app.add_subcommand("devices", "List OpenCL platforms and devices");
+  cmd->add_flag("--check", *check, "Self-test each device: build, render 160x120, compare with the reference");
+  cmd->add_option("--precision", *precision, "Precision variant for --check (default robust)");
+  cmd->callback([check, precision] {
+    KernelConfig cfg;
+    cfg.precision = parse_precision(*precision);
+    auto devs = list_devices();
+    const size_t chosen = default_device(devs);
+    std::printf("%-5s %-28s %-52s %-6s %-18s %4s %5s\n", "index", "platform", "device", "type", "OpenCL C", "CUs", "fp64");
+    int failed = 0;
+    for (const auto& d : devs) {
+      const std::string index = std::to_string(d.index) + (size_t(d.index) == chosen ? "*" : "");
+      std::printf("%-5s %-28.28s %-52.52s %-6s %-18.18s %4u %5s\n", index.c_str(), d.platform_name.c_str(),
+                  d.name.c_str(), d.type.c_str(), d.c_version.c_str(), d.compute_units, d.fp64 ? "yes" : "no");
+      if (!*check) continue;
+      SelfTestResult r = self_test(d, cfg);
+      if (!r.error.empty())
+        std::printf("      check: FAIL (%s)\n", r.error.c_str());
+      else
+        std::printf("      check: %s  %zu px off by > 1 of %zu (%.4f%%), max abs %d, PSNR %s dB, NaN %zu; build %.0f ms, "
+                    "kernel %.2f ms%s\n",
+                    r.pass ? "PASS" : "FAIL", r.cmp.off_by_gt1, r.cmp.pixels, r.cmp.percent_off_by_gt1(),
+                    r.cmp.max_abs_8bit, format_psnr(r.cmp.psnr_8bit).c_str(), r.cmp.nan_inf, r.build_ms, r.kernel_ms,
+                    time_source_note(r.host_timed_launches, r.launches).c_str());
+      failed += !r.pass;
+    }
+    std::printf("* default device (the first GPU, else the first device)\n");
+    if (failed) throw CheckFailure(std::to_string(failed) + " device(s) failed the self-test");
+  });
+}
+
+}  // namespace clrt

@@ -1,8 +1,0 @@
-// builtin_scene.hpp - the book's demo scene compiled into the binary, for
-// self-tests that must work wherever clrt runs (`clrt devices --check`).
-#pragma once
-#include "scene.hpp"
-
-namespace clrt {
-Scene builtin_demo_scene();
-}

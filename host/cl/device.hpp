@@ -1,0 +1,47 @@
+// device.hpp - OpenCL platform/device enumeration and selection.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "cl/cl.hpp"
+
+namespace clrt {
+
+struct DeviceInfo {
+  int index = 0;  // global index over all platforms, as `clrt devices` shows
+  cl::Platform platform;
+  cl::Device device;
+  std::string name, platform_name, vendor, type, version, c_version, driver;
+  cl_uint compute_units = 0;
+  bool fp64 = false;
+  cl_ulong max_alloc = 0, global_mem = 0;
+  size_t max_work_group = 0;
+  cl_uint clock_mhz = 0;
+  cl_uint native_float_width = 0;
+};
+
+// Device kinds by DeviceInfo::type ("CPU", "GPU", "ACCELERATOR", ...): the
+// one place that reads it.
+inline bool is_cpu_type(const std::string& type) {
+  return type.find("CPU") != std::string::npos;
+}
+inline bool is_gpu_type(const std::string& type) {
+  return type.find("GPU") != std::string::npos;
+}
+
+// Every device of every platform. Throws DeviceError("no OpenCL platform ...")
+// when the ICD loader finds none.
+std::vector<DeviceInfo> list_devices();
+
+// Position in `all` (non-empty) of the default device: the first GPU, else
+// the first device.
+size_t default_device(const std::vector<DeviceInfo>& all);
+
+// Selects devices by SPEC: "" (first GPU, else first device), an index, a
+// comma-separated list of indices, "all", or a case-insensitive substring of
+// the device name, type (cpu/gpu/accelerator) or platform name (first match).
+// Unknown SPEC -> UserError listing what exists.
+std::vector<DeviceInfo> select_devices(const std::string& spec);
+DeviceInfo select_device(const std::string& spec);
+
+}  // namespace clrt

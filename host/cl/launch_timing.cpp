@@ -1,0 +1,52 @@
+// launch_timing.cpp - the plausibility rule for profiling-event times.
+#include "cl/launch_timing.hpp"
+
+#include <cmath>
+
+#include "util/timer.hpp"
+
+namespace clrt {
+
+bool event_time_plausible(double event_ms, double wall_ms) {
+  if (!std::isfinite(event_ms) || event_ms <= 0) return false;
+  if (event_ms > wall_ms * kEventMaxOverWall + kEventSlackMs) return false;
+  if (wall_ms >= kEventMinCheckedWallMs && event_ms < kEventMinFractionOfWall * wall_ms) return false;
+  return true;
+}
+
+LaunchTime launch_time(double event_ms, double wall_ms) {
+  LaunchTime t;
+  t.event_ms = event_ms;
+  t.wall_ms = wall_ms;
+  t.from_events = event_time_plausible(event_ms, wall_ms);
+  t.ms = t.from_events ? event_ms : wall_ms;
+  return t;
+}
+
+LaunchTime run_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::NDRange& global,
+                     const cl::NDRange& local) {
+  cl::Event ev;
+  const auto launched = Clock::now();
+  queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &ev);
+  ev.wait();
+  const double wall_ms = ms_since(launched);
+  // As doubles: a driver that reports END before START gives a negative
+  // (implausible) time instead of a wrapped-around huge one.
+  const double start = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_START>());
+  const double end = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_END>());
+  return launch_time((end - start) * 1e-6, wall_ms);
+}
+
+std::string time_source(int host_timed, int launches) {
+  if (host_timed <= 0) return "events";
+  return host_timed >= launches ? "host" : "mixed";
+}
+
+std::string time_source_note(int host_timed, int launches) {
+  if (host_timed <= 0) return "";
+  if (host_timed >= launches) return " (host wall clock: the device's profiling events were implausible)";
+  return " (" + std::to_string(host_timed) + " of " + std::to_string(launches) +
+         " launches timed by the host wall clock: implausible profiling events)";
+}
+
+}  // namespace clrt

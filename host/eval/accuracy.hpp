@@ -1,0 +1,57 @@
+// accuracy.hpp - error against run time: every precision variant on every
+// scene, kernel time (median of N launches after a warm-up) and the error of
+// the image against the double reference (`clrt accuracy`).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "render/build_options.hpp"
+#include "eval/compare.hpp"
+#include "render/precision.hpp"
+#include "scene/scene.hpp"
+
+namespace clrt {
+
+struct AccuracySettings {
+  int width = 600, height = 600;
+  int depth = -1;      // -1 = each scene's recursion_depth
+  int repeat = 7;      // timed launches per variant (after one warm-up launch)
+  std::string device;  // device spec ("" = default)
+  KernelConfig base;   // precision is overwritten per variant
+  std::vector<Precision> variants = all_precisions();
+};
+
+struct AccuracyRow {
+  std::string scene;  // as given (path)
+  std::string variant;
+  int depth = 0;
+  bool supported = true;
+  std::string note;               // why unsupported
+  std::vector<double> kernel_ms;  // every timed frame (summed over its launches)
+  double median_ms = 0;
+  int launches = 0, host_timed_launches = 0;  // over the timed frames (launch_timing.hpp)
+  std::string time_source() const;            // "events", "host" or "mixed"
+  Comparison error;                           // against the reference
+};
+
+struct NamedScene {
+  std::string name;
+  Scene scene;
+};
+
+// Renders the reference once per scene, then each variant once (warm-up; its
+// image is the one compared), then `repeat` timed rounds over all variants
+// (interleaved, so background load hits every variant alike). A variant the
+// device cannot run (fp64 without cl_khr_fp64) gives an unsupported row.
+std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes, const AccuracySettings& s);
+
+// Output forms of the same rows.
+std::string accuracy_table(const std::vector<AccuracyRow>& rows);  // fixed-width text
+std::string accuracy_markdown(const std::vector<AccuracyRow>& rows);
+std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySettings& s, const std::string& device);
+void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path);
+// Error (RMSE, 8-bit levels, log scale) against median kernel time; one series
+// per variant, one point per scene. RMSE 0 is drawn at a floor and labelled.
+void write_accuracy_plot(const std::vector<AccuracyRow>& rows, const std::string& path, const std::string& title);
+
+}  // namespace clrt

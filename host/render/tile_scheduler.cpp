@@ -1,0 +1,129 @@
+// tile_scheduler.cpp - dynamic, adaptive band scheduling over devices.
+#include "render/tile_scheduler.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "render/cl_renderer.hpp"
+#include "cl/launch_timing.hpp"
+#include "util/timer.hpp"
+
+namespace clrt {
+
+double launch_limit_ms(const TilePolicy& policy, const std::string& device_type) {
+  if (policy.max_launch_ms >= 0) return policy.max_launch_ms;
+  return is_cpu_type(device_type) ? 0.0 : 500.0;
+}
+
+namespace {
+
+class BandQueue {
+ public:
+  BandQueue(int height, int workers) : height_(height), workers_(workers) {}
+
+  // Takes up to `want` rows; when `guided` and there are several workers, at
+  // most half of an even share of what is left (guided scheduling), so the
+  // frame ends with small bands and no device waits long for the slowest.
+  // Returns false when the frame is done.
+  bool take(int want, bool guided, int& y0, int& rows) {
+    std::lock_guard<std::mutex> lock(m_);
+    int left = height_ - next_;
+    if (left <= 0) return false;
+    int n = std::min(want, left);
+    if (guided && workers_ > 1) n = std::min(n, std::max(1, (left + 2 * workers_ - 1) / (2 * workers_)));
+    y0 = next_;
+    rows = n;
+    next_ += n;
+    return true;
+  }
+
+ private:
+  std::mutex m_;
+  int height_, workers_, next_ = 0;
+};
+
+void run_worker(ClRenderer& r, BandQueue& queue, Image& img, const TilePolicy& policy, int n_workers,
+                DeviceShare& share) {
+  const int W = img.width, H = img.height;
+  const double limit = launch_limit_ms(policy, r.device().type);
+  // Largest band the device can hold (float RGB output is the largest buffer).
+  const long long alloc_rows = std::max<long long>(1, (long long)(r.device().max_alloc / (3 * sizeof(float))) / W);
+  const int max_rows = int(std::min<long long>(H, alloc_rows));
+  int rows;
+  if (policy.band_rows > 0)
+    rows = policy.band_rows;
+  else if (limit > 0 || n_workers > 1)
+    rows = std::min(16, max_rows);  // calibration band: measure before growing
+  else
+    rows = max_rows;  // one device, no limit: as few launches as memory allows
+  rows = std::max(1, std::min(rows, max_rows));
+
+  int y0 = 0, n = 0;
+  while (queue.take(rows, policy.band_rows == 0, y0, n)) {
+    auto t0 = std::chrono::steady_clock::now();
+    const LaunchTime launch = r.render_tile(0, y0, W, n, img);
+    const double ms = launch.ms;
+    share.host_timed_launches += !launch.from_events;
+    share.busy_ms += ms_since(t0);
+    share.kernel_ms += ms;
+    share.max_launch_ms = std::max(share.max_launch_ms, ms);
+    share.tiles += 1;
+    share.rows += n;
+    if (policy.band_rows > 0) continue;
+    // Adapt: aim at 80% of the launch limit, or (no limit) 100 ms per band
+    // with several devices, growing at most 4x per step.
+    const double per_row = std::max(ms, 1e-3) / n;
+    const double target = limit > 0 ? 0.8 * limit : (n_workers > 1 ? 100.0 : 0.0);
+    if (target > 0) {
+      double want = std::floor(target / per_row);
+      rows = int(std::max(1.0, std::min({want, 4.0 * n, double(max_rows)})));
+    }
+  }
+}
+
+}  // namespace
+
+void print_shares(const std::vector<DeviceShare>& shares, std::FILE* to) {
+  long long total = 0;
+  for (const auto& s : shares) total += s.rows;
+  for (size_t i = 0; i < shares.size(); ++i) {
+    const auto& s = shares[i];
+    std::fprintf(to, "  device %zu %-48.48s %4d tiles, %6lld rows (%5.1f%%), kernel %9.2f ms, busy %9.2f ms, longest launch %8.2f ms%s\n",
+                i, s.device.c_str(), s.tiles, s.rows, total ? 100.0 * s.rows / total : 0.0, s.kernel_ms, s.busy_ms,
+                s.max_launch_ms, time_source_note(s.host_timed_launches, s.tiles).c_str());
+  }
+}
+
+std::vector<DeviceShare> render_bands(const std::vector<ClRenderer*>& workers, Image& img, const TilePolicy& policy) {
+  std::vector<DeviceShare> shares(workers.size());
+  for (size_t i = 0; i < workers.size(); ++i) shares[i].device = workers[i]->device().name;
+  BandQueue queue(img.height, int(workers.size()));
+  if (workers.size() == 1) {
+    run_worker(*workers[0], queue, img, policy, 1, shares[0]);
+    return shares;
+  }
+  // One host thread per device: each owns its context, queue and program, and
+  // writes disjoint rows of `img`.
+  std::vector<std::exception_ptr> errors(workers.size());
+  std::vector<std::thread> threads;
+  for (size_t i = 0; i < workers.size(); ++i) {
+    threads.emplace_back([&, i] {
+      try {
+        run_worker(*workers[i], queue, img, policy, int(workers.size()), shares[i]);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return shares;
+}
+
+}  // namespace clrt

@@ -1,0 +1,48 @@
+// tile_scheduler.hpp - splits a frame into horizontal bands (tiles of full
+// width) handed out dynamically to one or more devices: each device takes its
+// next band when it finishes the previous one, so faster devices take more.
+// Band heights adapt per device so no kernel launch exceeds a time limit (GPU
+// watchdogs) and no band exceeds the device's largest allocation.
+#pragma once
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "image/image.hpp"
+
+namespace clrt {
+
+class ClRenderer;
+
+struct TilePolicy {
+  // Upper bound for one kernel launch in ms; 0 = none. The default (-1)
+  // means: 500 ms on GPUs/accelerators (watchdogs kill long launches), none
+  // on CPUs.
+  double max_launch_ms = -1;
+  // Fixed band height in rows; 0 = adaptive.
+  int band_rows = 0;
+};
+
+struct DeviceShare {
+  std::string device;
+  int tiles = 0;                // bands rendered
+  long long rows = 0;           // image rows rendered
+  double kernel_ms = 0;         // sum of kernel times (profiling events, or host time where implausible)
+  int host_timed_launches = 0;  // launches timed by the host clock (launch_timing.hpp)
+  double busy_ms = 0;           // wall time spent launching, waiting and copying
+  double max_launch_ms = 0;
+};
+
+// Renders the whole frame of every worker's prepared scene into `img` (all
+// workers must have been prepared with the same scene and size). Returns one
+// share per worker, in order. Exceptions from any worker are rethrown.
+std::vector<DeviceShare> render_bands(const std::vector<ClRenderer*>& workers, Image& img, const TilePolicy& policy);
+
+// Prints one line per device: bands, rows (share of the frame), kernel and
+// busy time, longest launch.
+void print_shares(const std::vector<DeviceShare>& shares, std::FILE* to = stdout);
+
+// The effective launch limit of `policy` for a device of this type string.
+double launch_limit_ms(const TilePolicy& policy, const std::string& device_type);
+
+}  // namespace clrt

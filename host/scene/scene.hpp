@@ -1,0 +1,69 @@
+// scene.hpp - the scene model (double precision) and its JSON loader.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "util/vec3.hpp"
+
+namespace clrt {
+
+struct Sphere {
+  Vec3 center;
+  double radius = 1;
+  Vec3 color;               // 0..255
+  double specular = -1;     // -1 = matte
+  double reflective = 0;    // 0..1
+};
+
+enum class LightType { Ambient, Point, Directional };
+
+struct Light {
+  LightType type = LightType::Ambient;
+  double intensity = 0;
+  Vec3 vec;  // position (point) or direction (directional)
+};
+
+struct Camera {
+  Vec3 position;
+  std::array<double, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major
+  double viewport_w = 1, viewport_h = 1;
+  double projection_plane_d = 1;
+};
+
+struct Scene {
+  Camera camera;
+  Vec3 background;
+  int recursion_depth = 3;
+  double epsilon = 0.001;
+  std::vector<Sphere> spheres;
+  std::vector<Light> lights;
+};
+
+// The range every engine and precision renders without overflow or
+// underflow (so without NaN/Inf): every coordinate within ±kMaxLength, every
+// size (radius, viewport, projection distance) in [kMinLength, kMaxLength],
+// the camera's ray directions (rotation × viewport/projection distance)
+// within kMaxLength, specular exponents up to kMaxSpecular, the sum of all
+// light intensities up to kMaxTotalIntensity. Why these numbers: the kernels
+// compute in float32 (fp64 builds receive scene values as float hi + lo
+// pairs), where squares of differences of two coordinates must stay below
+// FLT_MAX ~ 3.4e38 and squares of sizes above FLT_MIN ~ 1.2e-38: 1e8 leaves
+// them 1e16 and 1e-16, with room for the quadratic's b^2 - 4ac. The parser
+// rejects anything outside, naming the value and the limit.
+constexpr double kMaxLength = 1e8, kMinLength = 1e-8;
+constexpr double kMaxSpecular = 1e8, kMaxTotalIntensity = 1e30;
+
+// Parses and validates a scene; throws UserError("<name>: <path>: <problem>").
+// Directional light directions are rescaled by a power of two so their
+// largest component lies in [0.5, 1) (no length underflows or overflows):
+// the book's lighting does not depend on their length.
+Scene parse_scene(const std::string& json_text, const std::string& name);
+// Largest scene file load_scene() accepts.
+constexpr size_t kMaxSceneBytes = size_t(64) << 20;
+// Reads a file and parses it; a missing/unreadable/oversized file is a UserError.
+Scene load_scene(const std::string& path);
+// Serializes a scene back to JSON text (used by generated test suites).
+std::string scene_to_json(const Scene& s);
+
+}  // namespace clrt

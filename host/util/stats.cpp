@@ -1,0 +1,52 @@
+// stats.cpp - summaries of repeated measurements.
+#include "util/stats.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace clrt {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+Stats summarize(const std::vector<double>& v) {
+  Stats s;
+  s.n = int(v.size());
+  if (v.empty()) return s;
+  s.median = median(v);
+  s.min = *std::min_element(v.begin(), v.end());
+  s.max = *std::max_element(v.begin(), v.end());
+  double sum = 0;
+  for (double x : v) sum += x;
+  s.mean = sum / s.n;
+  if (s.n > 1) {
+    double ss = 0;
+    for (double x : v) ss += (x - s.mean) * (x - s.mean);
+    s.sd = std::sqrt(ss / (s.n - 1));
+  }
+  return s;
+}
+
+nlohmann::json stats_json(const Stats& s) {
+  return {{"n", s.n}, {"median", s.median}, {"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
+}
+
+std::string format_stats(const Stats& s, const char* unit, int decimals) {
+  char buf[256];
+  const int d = decimals;
+  // A ratio reads "1.63x"; a quantity "1.63 ms".
+  const char* space = std::string(unit) == "x" ? "" : " ";
+  if (s.n <= 1)
+    std::snprintf(buf, sizeof buf, "%.*f%s%s (N=%d)", d, s.median, space, unit, s.n);
+  else
+    std::snprintf(buf, sizeof buf, "median %.*f%s%s, mean %.*f ± %.*f, min %.*f, max %.*f (N=%d)", d, s.median, space,
+                  unit, d, s.mean, d, s.sd, d, s.min, d, s.max, s.n);
+  return buf;
+}
+
+}  // namespace clrt
