@@ -1,8 +1,10 @@
-/* clrt_layout.h - data layouts shared by the host (C++17) and the kernel
- * (OpenCL C 1.2). This is the ONLY file compiled by both sides; it holds
- * plain data, no shading logic. Every member is a 32-bit scalar so that the
- * layout is identical on both sides without alignment pragmas; the host
- * static_asserts sizes and offsets (host/scene_buffers.cpp).
+/* clrt_layout.h - data layouts and codes shared by the host (C++17) and the
+ * kernel (OpenCL C 1.2). This is the ONLY file compiled by both sides; it
+ * holds plain data, no shading logic. Every member is a 32-bit scalar so that
+ * the layout is identical on both sides without alignment pragmas; the host
+ * static_asserts that CLRT_LAYOUT_FIELDS covers every byte of every struct
+ * (host/render/scene_buffers.hpp) and the layout test compares the kernel
+ * compiler's offsets with the host's (kernels/layout_probe.cl).
  *
  * Doubles from the scene are stored as a float "hi" part plus a float "lo"
  * remainder (hi + lo == value to ~48 bits), so float kernels use hi only,
@@ -19,6 +21,15 @@ typedef float clrt_f32;
 typedef std::int32_t clrt_i32;
 #endif
 
+/* Precision variants: the value of -DCLRT_PRECISION, and the host's
+ * Precision enum (host/render/precision.hpp) takes its values from here. */
+#define CLRT_PRECISION_NAIVE 0
+#define CLRT_PRECISION_STABLE 1
+#define CLRT_PRECISION_ROBUST 2
+#define CLRT_PRECISION_FAST 3
+#define CLRT_PRECISION_FP64 4
+
+/* clrt_light.type, and the entries of -DCLRT_LIGHT_TYPES. */
 #define CLRT_LIGHT_AMBIENT 0
 #define CLRT_LIGHT_POINT 1
 #define CLRT_LIGHT_DIRECTIONAL 2
@@ -73,5 +84,45 @@ typedef struct clrt_ray_counts {
   clrt_i32 reflection;
   clrt_i32 sphere_tests;
 } clrt_ray_counts;
+
+/* Every member of every struct above, in declaration order, as
+ * FIELD(struct, member): the one list that the host's static_asserts, the
+ * kernel's layout probe and the layout test walk. A member added above but
+ * not here leaves a gap that the host's static_asserts report. */
+#define CLRT_LAYOUT_FIELDS(FIELD)    \
+  FIELD(clrt_sphere, center)         \
+  FIELD(clrt_sphere, radius)         \
+  FIELD(clrt_sphere, center_lo)      \
+  FIELD(clrt_sphere, radius_lo)      \
+  FIELD(clrt_sphere, color)          \
+  FIELD(clrt_sphere, specular)       \
+  FIELD(clrt_sphere, reflective)     \
+  FIELD(clrt_sphere, pad)            \
+  FIELD(clrt_light, type)            \
+  FIELD(clrt_light, intensity)       \
+  FIELD(clrt_light, vec)             \
+  FIELD(clrt_light, vec_lo)          \
+  FIELD(clrt_params, width)          \
+  FIELD(clrt_params, height)         \
+  FIELD(clrt_params, depth)          \
+  FIELD(clrt_params, n_spheres)      \
+  FIELD(clrt_params, n_lights)       \
+  FIELD(clrt_params, pad0)           \
+  FIELD(clrt_params, viewport)       \
+  FIELD(clrt_params, proj_d)         \
+  FIELD(clrt_params, epsilon)        \
+  FIELD(clrt_params, origin)         \
+  FIELD(clrt_params, origin_lo)      \
+  FIELD(clrt_params, rotation)       \
+  FIELD(clrt_params, rotation_lo)    \
+  FIELD(clrt_params, background)     \
+  FIELD(clrt_params, proj_d_lo)      \
+  FIELD(clrt_params, viewport_lo)    \
+  FIELD(clrt_params, epsilon_lo)     \
+  FIELD(clrt_params, pad1)           \
+  FIELD(clrt_ray_counts, primary)    \
+  FIELD(clrt_ray_counts, shadow)     \
+  FIELD(clrt_ray_counts, reflection) \
+  FIELD(clrt_ray_counts, sphere_tests)
 
 #endif /* CLRT_LAYOUT_H */

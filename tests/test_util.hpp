@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cl/device.hpp"
+#include "render/renderer.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt_test {
@@ -22,6 +23,18 @@ inline std::string test_device_spec() {
   return spec ? spec : "";
 }
 inline clrt::DeviceInfo test_device() { return clrt::select_device(test_device_spec()); }
+
+// A renderer on the test device.
+inline clrt::Renderer renderer(const clrt::KernelConfig& kernel, clrt::TilePolicy tiles = {},
+                               clrt::LocalSize local = {}) {
+  return clrt::Renderer({test_device()}, clrt::RenderSettings{kernel, tiles, local});
+}
+// One frame on the test device.
+inline clrt::Image render_cl(const clrt::Scene& s, int width, int height, int depth, const clrt::KernelConfig& kernel) {
+  clrt::Renderer r = renderer(kernel);
+  r.prepare(s, width, height, depth);
+  return r.render();
+}
 
 // Every scenes/*.json of the source tree, sorted.
 inline std::vector<std::string> shipped_scenes() {

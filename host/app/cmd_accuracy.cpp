@@ -1,17 +1,16 @@
 // cmd_accuracy.cpp - `clrt accuracy SCENE...`: error against kernel time for
 // every precision variant.
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <sstream>
 
-#include "eval/accuracy.hpp"
-#include "app/cli_common.hpp"
+#include "app/accuracy_report.hpp"
+#include "app/options.hpp"
 #include "cl/device.hpp"
-#include "clrt_layout.h"
+#include "eval/accuracy.hpp"
+#include "image/image.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
-#include "image/image.hpp"
 
 namespace clrt {
 
@@ -30,7 +29,9 @@ std::vector<Precision> parse_variants(const std::string& list) {
 void add_accuracy_command(CLI::App& app) {
   struct Opts {
     std::vector<std::string> scenes;
-    RenderOptions r;
+    ImageOptions image;
+    DeviceOptions device;
+    KernelOptions kernel;
     int repeat = 7;
     std::string variants = "naive,stable,robust,fast,fp64";
     std::string csv, plot;
@@ -41,37 +42,31 @@ void add_accuracy_command(CLI::App& app) {
       "accuracy",
       "Kernel time (median of --repeat after a warm-up) against error vs the reference, per variant x scene");
   cmd->add_option("scenes", o->scenes, "Scene files (JSON)")->required()->expected(1, -1);
-  cmd->add_option("--width", o->r.width, "Image width in pixels (default 600)");
-  cmd->add_option("--height", o->r.height, "Image height in pixels (default 600)");
-  cmd->add_option("--depth", o->r.depth, "Recursion depth (default: each scene's recursion_depth)")
-      ->check(CLI::Range(0, CLRT_MAX_DEPTH));
-  cmd->add_option("--device", o->r.device, "Device index or name/type substring (default: first GPU, else first)");
-  cmd->add_option("--repeat", o->repeat, "Timed kernel runs per variant after one warm-up (default 7)");
+  o->image.add(cmd);
+  o->device.add(cmd, /*several=*/false);
+  o->kernel.add(cmd, /*with_variant=*/false);
+  add_repeat_option(cmd, o->repeat, "Timed kernel runs per variant after one warm-up");
   cmd->add_option("--variants", o->variants, "Comma list of variants (default naive,stable,robust,fast,fp64)");
-  cmd->add_flag("--no-specialize", o->r.no_specialize, "Build the generic kernel instead of a scene-specialized one");
-  cmd->add_flag("--no-ftz", o->r.no_ftz, "Do not build with -cl-denorms-are-zero");
-  cmd->add_option("--kernel-dir", o->r.kernel_dir, "Read kernels from this directory instead of the embedded copies");
   cmd->add_flag("--json", o->json, "Print one JSON object instead of the table");
   cmd->add_flag("--markdown", o->markdown, "Print the table as Markdown");
   cmd->add_option("--csv", o->csv, "Also write the rows as CSV to this file");
   cmd->add_option("--plot", o->plot, "Also write an error-vs-time chart (PNG) to this file");
   cmd->callback([o] {
-    o->r.validate();
-    if (o->repeat < 1 || o->repeat > 1000) throw UserError("--repeat must be in [1, 1000]");
+    o->image.validate();
     if (!o->plot.empty()) check_output_format(o->plot);
     if (!o->csv.empty()) check_writable(o->csv, "CSV");  // fail before measuring, not after
     AccuracySettings s;
-    s.width = o->r.width;
-    s.height = o->r.height;
-    s.depth = o->r.depth;
+    s.width = o->image.width;
+    s.height = o->image.height;
+    s.depth = o->image.depth;
     s.repeat = o->repeat;
-    s.device = o->r.device;
-    s.base = o->r.kernel_config();
+    s.base = o->kernel.config();
     s.variants = parse_variants(o->variants);
     std::vector<NamedScene> scenes;
     for (const auto& p : o->scenes) scenes.push_back({p, load_scene(p)});
-    const std::string device = select_device(s.device).name;
-    auto rows = measure_accuracy(scenes, s);
+    const DeviceInfo dev = o->device.one();
+    const std::string device = dev.name;
+    auto rows = measure_accuracy(scenes, dev, s);
     if (!o->csv.empty()) write_accuracy_csv(rows, o->csv);
     if (!o->plot.empty())
       write_accuracy_plot(

@@ -4,13 +4,13 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "app/cli_common.hpp"
-#include "eval/compare.hpp"
-#include "eval/compare_json.hpp"
+#include "app/compare_report.hpp"
 #include "app/engine.hpp"
+#include "app/options.hpp"
+#include "cl/launch_timing.hpp"
+#include "eval/compare.hpp"
 #include "util/error.hpp"
 #include "util/json_text.hpp"
-#include "cl/launch_timing.hpp"
 
 namespace clrt {
 
@@ -21,7 +21,7 @@ void add_compare_command(CLI::App& app) {
   auto as_json = std::make_shared<bool>(false);
   auto limits = std::make_shared<Thresholds>();
   auto* cmd = app.add_subcommand("compare", "Render with both engines and report the error of OpenCL vs reference");
-  add_render_options(cmd, *o, /*with_engine=*/false);
+  o->add(cmd, /*with_engine=*/false);
   cmd->add_option("--diff", *diff, "Write a difference image (x16; magenta = hit flips, cyan = shadow flips)");
   cmd->add_option("--image", *image,
                   "Compare this image file (e.g. written by clrt render) instead of rendering with OpenCL; its size "
@@ -36,13 +36,13 @@ void add_compare_command(CLI::App& app) {
     Image img;
     if (!image->empty()) {
       img = read_image(*image, kMaxImageEdge, kMaxImagePixels);
-      o->width = img.width;
-      o->height = img.height;
+      o->image.width = img.width;
+      o->image.height = img.height;
     }
     o->validate();
     if (!diff->empty()) check_output_format(*diff);
     Scene scene = load_scene(o->scene_path);
-    int depth = o->effective_depth(scene);
+    int depth = o->image.effective_depth(scene);
     EngineRun ref_run, cl_run;
     Image ref = run_engine("reference", scene, *o, depth, &ref_run);
     const bool classified = image->empty();  // an image file has no hit/shadow data
@@ -55,11 +55,11 @@ void add_compare_command(CLI::App& app) {
     Comparison c = compare_images(img, ref);
     const Verdict verdict = judge(c, *limits);
     if (!diff->empty()) write_rgb8(diff_image(img, ref), img.width, img.height, *diff);
-    const std::string source = time_source(cl_run.cl.host_timed_launches, cl_run.cl.launches);
+    const std::string source = time_source(cl_run.frame.host_timed_launches, cl_run.frame.launches);
     if (*as_json) {
       nlohmann::json j = {{"scene", o->scene_path},
-                          {"width", o->width},
-                          {"height", o->height},
+                          {"width", o->image.width},
+                          {"height", o->image.height},
                           {"depth", depth},
                           {"reference_ms", ref_run.wall_ms},
                           {"worst_pixel",
@@ -68,13 +68,13 @@ void add_compare_command(CLI::App& app) {
                             {"value", {c.worst_test[0], c.worst_test[1], c.worst_test[2]}},
                             {"reference", {c.worst_reference[0], c.worst_reference[1], c.worst_reference[2]}}}}};
       if (classified)
-        j.update({{"precision", o->precision},
+        j.update({{"precision", o->kernel.precision},
                   {"device", cl_run.device},
                   {"build_options", cl_run.options},
-                  {"opencl_kernel_ms", cl_run.cl.kernel_ms},
+                  {"opencl_kernel_ms", cl_run.frame.kernel_ms},
                   {"opencl_kernel_time_source", source},
-                  {"opencl_build_ms", cl_run.cl.build_ms},
-                  {"opencl_build_cached", cl_run.cl.build_cached},
+                  {"opencl_build_ms", cl_run.frame.build_ms},
+                  {"opencl_build_cached", cl_run.frame.build_cached},
                   {"opencl_total_ms", cl_run.wall_ms}});
       else
         j["image"] = *image;
@@ -87,8 +87,8 @@ void add_compare_command(CLI::App& app) {
       }
       std::printf("%s\n", json_text(j).c_str());
     } else {
-      std::printf("scene          %s  %dx%d  depth %d  precision %s\n", o->scene_path.c_str(), o->width, o->height,
-                  depth, classified ? o->precision.c_str() : "-");
+      std::printf("scene          %s  %dx%d  depth %d  precision %s\n", o->scene_path.c_str(), o->image.width,
+                  o->image.height, depth, classified ? o->kernel.precision.c_str() : "-");
       if (classified)
         std::printf("device         %s\n", cl_run.device.c_str());
       else
@@ -99,8 +99,7 @@ void add_compare_command(CLI::App& app) {
       std::printf("max abs error  %d levels (8-bit), %.4f (float)\n", c.max_abs_8bit, c.max_abs_float);
       if (c.max_abs_8bit > 0)
         std::printf("worst pixel    (%d, %d): %d %d %d, reference %d %d %d\n", c.worst_x, c.worst_y, c.worst_test[0],
-                    c.worst_test[1], c.worst_test[2], c.worst_reference[0], c.worst_reference[1],
-                    c.worst_reference[2]);
+                    c.worst_test[1], c.worst_test[2], c.worst_reference[0], c.worst_reference[1], c.worst_reference[2]);
       std::printf("RMSE / PSNR    8-bit %.4f / %s dB, float %.4f / %s dB\n", c.rmse_8bit,
                   format_psnr(c.psnr_8bit).c_str(), c.rmse_float, format_psnr(c.psnr_float).c_str());
       if (classified)
@@ -109,11 +108,13 @@ void add_compare_command(CLI::App& app) {
         std::printf("flips          n/a (an image file has no hit/shadow data)\n");
       std::printf("NaN/Inf pixels %zu (reference: %zu)\n", c.nan_inf, c.nan_inf_reference);
       if (classified)
-        std::printf("time           reference %.1f ms; opencl kernel %.2f ms%s, build %.1f ms%s, render total %.1f ms\n",
-                    ref_run.wall_ms, cl_run.cl.kernel_ms,
-                    time_source_note(cl_run.cl.host_timed_launches, cl_run.cl.launches).c_str(), cl_run.cl.build_ms,
-                    cl_run.cl.build_cached ? " (cached)" : "", cl_run.wall_ms);
-      if (limits->any()) std::printf("verdict        %s\n", verdict.pass ? "PASS" : ("FAIL: " + verdict.reason).c_str());
+        std::printf(
+            "time           reference %.1f ms; opencl kernel %.2f ms%s, build %.1f ms%s, render total %.1f ms\n",
+            ref_run.wall_ms, cl_run.frame.kernel_ms,
+            time_source_note(cl_run.frame.host_timed_launches, cl_run.frame.launches).c_str(), cl_run.frame.build_ms,
+            cl_run.frame.build_cached ? " (cached)" : "", cl_run.wall_ms);
+      if (limits->any())
+        std::printf("verdict        %s\n", verdict.pass ? "PASS" : ("FAIL: " + verdict.reason).c_str());
     }
     if (!verdict.pass) throw CheckFailure("compare: " + verdict.reason);
   });

@@ -1,14 +1,15 @@
 // cmd_devices.cpp - `clrt devices [--check]`: every platform and device, and
-// optionally a self-test of each.
+// optionally a check that each renders correctly.
 #include <cstdio>
 #include <memory>
 
-#include "app/cli_common.hpp"
+#include "app/compare_report.hpp"
+#include "app/options.hpp"
 #include "cl/device.hpp"
-#include "util/error.hpp"
 #include "cl/launch_timing.hpp"
+#include "eval/device_check.hpp"
 #include "render/precision.hpp"
-#include "eval/self_test.hpp"
+#include "util/error.hpp"
 
 namespace clrt {
 
@@ -23,22 +24,24 @@ void add_devices_command(CLI::App& app) {
     cfg.precision = parse_precision(*precision);
     auto devs = list_devices();
     const size_t chosen = default_device(devs);
-    std::printf("%-5s %-28s %-52s %-6s %-18s %4s %5s\n", "index", "platform", "device", "type", "OpenCL C", "CUs", "fp64");
+    std::printf("%-5s %-28s %-52s %-6s %-18s %4s %5s\n", "index", "platform", "device", "type", "OpenCL C", "CUs",
+                "fp64");
     int failed = 0;
     for (const auto& d : devs) {
       const std::string index = std::to_string(d.index) + (size_t(d.index) == chosen ? "*" : "");
       std::printf("%-5s %-28.28s %-52.52s %-6s %-18.18s %4u %5s\n", index.c_str(), d.platform_name.c_str(),
                   d.name.c_str(), d.type.c_str(), d.c_version.c_str(), d.compute_units, d.fp64 ? "yes" : "no");
       if (!*check) continue;
-      SelfTestResult r = self_test(d, cfg);
+      DeviceCheckResult r = check_device(d, cfg);
       if (!r.error.empty())
         std::printf("      check: FAIL (%s)\n", r.error.c_str());
       else
-        std::printf("      check: %s  %zu px off by > 1 of %zu (%.4f%%), max abs %d, PSNR %s dB, NaN %zu; build %.0f ms, "
-                    "kernel %.2f ms%s\n",
-                    r.pass ? "PASS" : "FAIL", r.cmp.off_by_gt1, r.cmp.pixels, r.cmp.percent_off_by_gt1(),
-                    r.cmp.max_abs_8bit, format_psnr(r.cmp.psnr_8bit).c_str(), r.cmp.nan_inf, r.build_ms, r.kernel_ms,
-                    time_source_note(r.host_timed_launches, r.launches).c_str());
+        std::printf(
+            "      check: %s  %zu px off by > 1 of %zu (%.4f%%), max abs %d, PSNR %s dB, NaN %zu; build %.0f ms, "
+            "kernel %.2f ms%s\n",
+            r.pass ? "PASS" : "FAIL", r.cmp.off_by_gt1, r.cmp.pixels, r.cmp.percent_off_by_gt1(), r.cmp.max_abs_8bit,
+            format_psnr(r.cmp.psnr_8bit).c_str(), r.cmp.nan_inf, r.build_ms, r.kernel_ms,
+            time_source_note(r.host_timed_launches, r.launches).c_str());
       failed += !r.pass;
     }
     std::printf("* default device (the first GPU, else the first device)\n");

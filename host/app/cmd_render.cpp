@@ -2,11 +2,12 @@
 #include <cstdio>
 #include <memory>
 
-#include "app/cli_common.hpp"
 #include "app/engine.hpp"
+#include "app/frame_report.hpp"
+#include "app/options.hpp"
+#include "cl/launch_timing.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
-#include "render/tile_scheduler.hpp"
 
 namespace clrt {
 
@@ -14,7 +15,7 @@ void add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   auto out = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("render", "Render a scene to an image (png, ppm, exr, ...)");
-  add_render_options(cmd, *o);
+  o->add(cmd, /*with_engine=*/true);
   cmd->add_option("-o,--output", *out,
                   "Output image; the extension picks the format ('-' = PNG on standard output, as are devices and "
                   "FIFOs named without an extension)")
@@ -23,21 +24,21 @@ void add_render_command(CLI::App& app) {
     o->validate();
     const OutputTarget target = check_output_format(*out);  // fail before rendering
     Scene scene = load_scene(o->scene_path);
-    int depth = o->effective_depth(scene);
+    int depth = o->image.effective_depth(scene);
     EngineRun run;
     Image img = run_engine(o->engine, scene, *o, depth, &run);
     write_image(img, *out);
     // The report goes to stderr when the image itself goes to stdout.
     std::FILE* report = target.kind == OutputKind::File ? stdout : stderr;
     if (o->engine == "opencl")
-      std::fprintf(report, "%s: %dx%d depth %d on %s: kernel %.2f ms%s, build %.1f ms%s\n", out->c_str(), o->width,
-                   o->height, depth, run.device.c_str(), run.cl.kernel_ms,
-                   time_source_note(run.cl.host_timed_launches, run.cl.launches).c_str(), run.cl.build_ms,
-                   run.cl.build_cached ? " (cached)" : "");
-    if (run.shares.size() > 1) print_shares(run.shares, report);
+      std::fprintf(report, "%s: %dx%d depth %d on %s: kernel %.2f ms%s, build %.1f ms%s\n", out->c_str(),
+                   o->image.width, o->image.height, depth, run.device.c_str(), run.frame.kernel_ms,
+                   time_source_note(run.frame.host_timed_launches, run.frame.launches).c_str(), run.frame.build_ms,
+                   run.frame.build_cached ? " (cached)" : "");
+    if (run.frame.shares.size() > 1) print_shares(run.frame.shares, report);
     if (o->engine != "opencl")
-      std::fprintf(report, "%s: %dx%d depth %d with the reference renderer: %.1f ms\n", out->c_str(), o->width,
-                   o->height, depth, run.wall_ms);
+      std::fprintf(report, "%s: %dx%d depth %d with the reference renderer: %.1f ms\n", out->c_str(), o->image.width,
+                   o->image.height, depth, run.wall_ms);
   });
 }
 

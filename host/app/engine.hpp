@@ -1,22 +1,21 @@
-// engine.hpp - run either engine on a scene with the CLI's options.
+// engine.hpp - render a scene with the engine the command line picked: the
+// OpenCL renderer (render/renderer.hpp) or the scalar double reference.
 #pragma once
 #include <string>
 
-#include "render/cl_renderer.hpp"
-#include "render/multi_renderer.hpp"
-#include "app/cli_common.hpp"
+#include "app/options.hpp"
 #include "image/image.hpp"
+#include "render/renderer.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
 
 struct EngineRun {
-  std::string engine;      // "opencl" or "reference"
-  std::string device;      // device name(s) (opencl)
-  std::string options;     // build options (opencl)
-  double wall_ms = 0;      // reference: render time; opencl: render() wall time
-  RenderTimings cl;        // opencl details (kernel_ms summed over devices)
-  std::vector<DeviceShare> shares;  // opencl: per-device tiles and time
+  std::string engine;   // "opencl" or "reference"
+  std::string device;   // device name(s); the host for the reference
+  std::string options;  // build options (opencl)
+  double wall_ms = 0;   // reference: render time; opencl: render() wall time
+  FrameStats frame;     // opencl: build, upload, kernel, per-device shares
 };
 
 Image run_engine(const std::string& engine, const Scene& scene, const RenderOptions& o, int depth, EngineRun* run);

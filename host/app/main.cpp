@@ -7,7 +7,7 @@
 #include <string>
 
 #include "cl/cl.hpp"
-#include "app/cli_common.hpp"
+#include "app/options.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 

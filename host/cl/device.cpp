@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <sstream>
+#include <stdexcept>
 
 #include "util/error.hpp"
 
@@ -114,8 +115,10 @@ size_t default_device(const std::vector<DeviceInfo>& all) {
   return 0;
 }
 
-std::vector<DeviceInfo> select_devices(const std::string& spec_in) {
-  auto all = list_devices();
+std::vector<DeviceInfo> select_devices(const std::string& spec) { return pick_devices(list_devices(), spec); }
+
+std::vector<DeviceInfo> pick_devices(const std::vector<DeviceInfo>& all, const std::string& spec_in) {
+  if (all.empty()) throw std::logic_error("pick_devices without devices");
   const std::string spec = lower(spec_in);
   if (spec.empty() || spec == "default") return {all[default_device(all)]};
   if (spec == "all") return all;

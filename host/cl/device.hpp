@@ -42,6 +42,8 @@ size_t default_device(const std::vector<DeviceInfo>& all);
 // the device name, type (cpu/gpu/accelerator) or platform name (first match).
 // Unknown SPEC -> UserError listing what exists.
 std::vector<DeviceInfo> select_devices(const std::string& spec);
+// The same choice among `all` (non-empty), e.g. list_devices().
+std::vector<DeviceInfo> pick_devices(const std::vector<DeviceInfo>& all, const std::string& spec);
 DeviceInfo select_device(const std::string& spec);
 
 }  // namespace clrt

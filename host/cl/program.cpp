@@ -2,10 +2,11 @@
 #include "cl/program.hpp"
 
 #include <chrono>
-#include <iostream>
+#include <sstream>
 
-#include "util/error.hpp"
 #include "cl/program_cache.hpp"
+#include "util/error.hpp"
+#include "util/log.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -46,8 +47,9 @@ cl::Program build_from_source(const cl::Context& ctx, const DeviceInfo& dev, con
       log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dev.device);
     } catch (const cl::Error&) {
     }
-    std::cerr << "---- kernel build log (" << dev.name << ", options: " << options << ") ----\n"
-              << log << "\n---- end of build log ----\n";
+    // Before the exception: main() reports it as one line, after the log.
+    log_message(LogLevel::Error, "---- kernel build log (" + dev.name + ", options: " + options + ") ----\n" + log +
+                                     "\n---- end of build log ----");
     throw DeviceError("kernel build failed on " + dev.name + ": " + cl_error_name(e.err()) + " (build log above)");
   }
   return program;
@@ -82,15 +84,17 @@ cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const s
     }
   }
   double ms = ms_since(t0);
-  if (!note.empty()) std::cerr << "clrt: warning: " << note << "\n";
+  if (!note.empty()) log_message(LogLevel::Warning, note);
   if (flags.verbose) {
-    std::cerr << "clrt: build options (" << dev.name << "): " << options << "\n"
-              << "clrt: program "
-              << (hit                ? "loaded from cache"
-                  : !flags.use_cache ? "built (cache off)"
-                  : stored           ? "built, stored in cache"
-                                     : "built, not stored in the cache")
-              << " in " << ms << " ms" << (flags.use_cache ? " [" + cache_entry_path(key) + "]" : "") << "\n";
+    log_message(LogLevel::Info, "build options (" + dev.name + "): " + options);
+    std::ostringstream line;  // a stream: the time as it has always been printed (6 significant digits)
+    line << "program "
+         << (hit                ? "loaded from cache"
+             : !flags.use_cache ? "built (cache off)"
+             : stored           ? "built, stored in cache"
+                                : "built, not stored in the cache")
+         << " in " << ms << " ms" << (flags.use_cache ? " [" + cache_entry_path(key) + "]" : "");
+    log_message(LogLevel::Info, line.str());
   }
   if (stats) {
     stats->ms = ms;

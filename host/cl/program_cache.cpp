@@ -12,8 +12,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <sstream>
+
+#include "util/log.hpp"
 
 namespace clrt {
 namespace {
@@ -146,7 +147,7 @@ bool cache_store(const ProgramCacheKey& key, const std::vector<unsigned char>& b
   fs::create_directories(program_cache_dir(), ec);
   if (fs::exists(path + ".bad", ec)) return false;  // never again for this key (cache_begin_load)
   if (cache_write_entry(path, key.text(), binary)) return true;
-  if (!warned) std::cerr << "clrt: warning: cannot write the program cache entry " << path << "\n";
+  if (!warned) log_message(LogLevel::Warning, "cannot write the program cache entry " + path);
   warned = true;
   return false;
 }

@@ -5,8 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "render/build_options.hpp"
+#include "cl/device.hpp"
 #include "eval/compare.hpp"
+#include "render/build_options.hpp"
 #include "render/precision.hpp"
 #include "scene/scene.hpp"
 
@@ -14,10 +15,9 @@ namespace clrt {
 
 struct AccuracySettings {
   int width = 600, height = 600;
-  int depth = -1;      // -1 = each scene's recursion_depth
-  int repeat = 7;      // timed launches per variant (after one warm-up launch)
-  std::string device;  // device spec ("" = default)
-  KernelConfig base;   // precision is overwritten per variant
+  int depth = -1;     // -1 = each scene's recursion_depth
+  int repeat = 7;     // timed launches per variant (after one warm-up launch)
+  KernelConfig base;  // precision is overwritten per variant
   std::vector<Precision> variants = all_precisions();
 };
 
@@ -43,15 +43,7 @@ struct NamedScene {
 // image is the one compared), then `repeat` timed rounds over all variants
 // (interleaved, so background load hits every variant alike). A variant the
 // device cannot run (fp64 without cl_khr_fp64) gives an unsupported row.
-std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes, const AccuracySettings& s);
-
-// Output forms of the same rows.
-std::string accuracy_table(const std::vector<AccuracyRow>& rows);  // fixed-width text
-std::string accuracy_markdown(const std::vector<AccuracyRow>& rows);
-std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySettings& s, const std::string& device);
-void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path);
-// Error (RMSE, 8-bit levels, log scale) against median kernel time; one series
-// per variant, one point per scene. RMSE 0 is drawn at a floor and labelled.
-void write_accuracy_plot(const std::vector<AccuracyRow>& rows, const std::string& path, const std::string& title);
+std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes, const DeviceInfo& device,
+                                          const AccuracySettings& s);
 
 }  // namespace clrt

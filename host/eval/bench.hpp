@@ -1,6 +1,6 @@
 // bench.hpp - `clrt bench`: build (cold/warm), upload, kernel, download and
 // frame times of the OpenCL renderer on one or more devices (several share
-// each frame, see multi_renderer.hpp), rays by kind (counted by the kernel),
+// each frame, see render/renderer.hpp), rays by kind (counted by the kernel),
 // the device's measured multiply-add peak, and in the same run the scalar
 // double reference and the OpenMP float tracer (bench/omp_tracer.hpp).
 //
@@ -11,31 +11,25 @@
 // min, max). Kernel times are profiling events checked against the host
 // clock (launch_timing.hpp); the result says which clock they came from.
 #pragma once
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "render/build_options.hpp"
-#include "render/cl_renderer.hpp"
 #include "cl/device.hpp"
-#include "image/image.hpp"
-#include "render/multi_renderer.hpp"
 #include "eval/peak_flops.hpp"
+#include "image/image.hpp"
+#include "render/renderer.hpp"
 #include "scene/scene.hpp"
 #include "util/stats.hpp"
-#include "render/tile_scheduler.hpp"
 
 namespace clrt {
 
 struct BenchSettings {
   int width = 600, height = 600, depth = 3;
-  int repeat = 5;  // timed rounds (clrt frame + OpenMP frame) after one warm-up each
-  int local_x = 0, local_y = 0;
+  int repeat = 5;         // >= 1 (--repeat checks it): timed rounds (clrt frame + OpenMP frame) after one warm-up each
   bool reference = true;  // time the scalar double reference (and keep its image)
   bool omp = true;        // time the OpenMP float tracer
   bool builds = true;     // measure cold (no cache) and warm (cache hit) builds
   bool peak = true;       // measure the device's multiply-add peak
-  TilePolicy policy;      // bands per launch (tile_scheduler.hpp)
 };
 
 // Builds timed per kind: at most this many (a cold build costs up to seconds).
@@ -52,37 +46,33 @@ struct BenchResult {
   int width = 0, height = 0, depth = 0, repeat = 0;
   Stats build_cold, build_warm;  // ms per build of every device (the longest, they run in parallel)
   bool build_warm_cached = false;
-  Stats upload;                 // ms, scene buffers (one per build above)
-  double end_to_end_ms = 0;     // N=1: new renderer, (warm) build + upload + first frame
-  double first_launch_ms = 0;   // N=1: kernel time of that first frame
-  std::vector<double> kernel_ms;  // each timed frame: kernel time summed over launches (and devices)
-  Stats kernel;                 // of kernel_ms
+  Stats upload;                               // ms, scene buffers (one per build above)
+  double end_to_end_ms = 0;                   // N=1: new renderer, (warm) build + upload + first frame
+  double first_launch_ms = 0;                 // N=1: kernel time of that first frame
+  std::vector<double> kernel_ms;              // each timed frame: kernel time summed over launches (and devices)
+  Stats kernel;                               // of kernel_ms
   int launches = 0, host_timed_launches = 0;  // over the timed frames (launch_timing.hpp)
-  Stats frame;                  // wall ms of a warm frame: every launch + download into host memory
-  Stats download;               // ms per frame
-  std::vector<DeviceShare> shares;  // per device, last timed frame
+  Stats frame;                                // wall ms of a warm frame: every launch + download into host memory
+  Stats download;                             // ms per frame
+  std::vector<DeviceShare> shares;            // per device, last timed frame
   RayCounts rays;
   double mrays_per_s = 0, ns_per_sphere_test = 0, gflops = 0;  // from the median kernel time
-  std::vector<PeakFlops> peaks;  // per device
-  double peak_gflops = 0;        // sum of the measured peaks; 0 when any is unknown
-  Stats reference;               // ms, scalar double reference (N=1)
-  double speedup_vs_reference = 0;  // reference / frame (medians)
-  Stats omp;                     // ms per OpenMP frame
+  std::vector<PeakFlops> peaks;                                // per device
+  double peak_gflops = 0;                                      // sum of the measured peaks; 0 when any is unknown
+  Stats reference;                                             // ms, scalar double reference (N=1)
+  double speedup_vs_reference = 0;                             // reference / frame (medians)
+  Stats omp;                                                   // ms per OpenMP frame
   int omp_threads = 0;
-  Stats speedup_vs_omp;          // per round: OpenMP frame / clrt frame (the headline)
-  Stats kernel_speedup_vs_omp;   // per round: OpenMP frame / clrt kernel time (secondary)
-  Image image;      // the OpenCL image (last timed run)
-  Image reference_image;  // the reference image (if settings.reference)
+  Stats speedup_vs_omp;         // per round: OpenMP frame / clrt frame (the headline)
+  Stats kernel_speedup_vs_omp;  // per round: OpenMP frame / clrt kernel time (secondary)
+  Image image;                  // the OpenCL image (last timed run)
+  Image reference_image;        // the reference image (if settings.reference)
 
   // "events", "host" or "mixed" (launch_timing.hpp)
   std::string kernel_time_source() const;
 };
 
-BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const KernelConfig& cfg,
+BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
                       const BenchSettings& s);
-
-nlohmann::json bench_json(const BenchResult& r);
-nlohmann::json shares_json(const std::vector<DeviceShare>& shares);
-void print_bench(const BenchResult& r);
 
 }  // namespace clrt

@@ -13,11 +13,14 @@ namespace {
 double psnr(double rmse) {
   return rmse > 0 ? 20.0 * std::log10(255.0 / rmse) : std::numeric_limits<double>::infinity();
 }
-double clamp255(double v) { return std::isnan(v) ? 0.0 : std::min(255.0, std::max(0.0, v)); }
+double clamp255(double v) {
+  return std::isnan(v) ? 0.0 : std::min(255.0, std::max(0.0, v));
+}
 }  // namespace
 
 Comparison compare_images(const Image& test, const Image& ref) {
-  if (test.width != ref.width || test.height != ref.height) throw std::invalid_argument("compare_images: size mismatch");
+  if (test.width != ref.width || test.height != ref.height)
+    throw std::invalid_argument("compare_images: size mismatch");
   Comparison c;
   c.pixels = ref.pixels();
   double se8 = 0, sef = 0;
@@ -61,6 +64,10 @@ Comparison compare_images(const Image& test, const Image& ref) {
   return c;
 }
 
+bool within_tolerance(const Comparison& c) {
+  return c.percent_off_by_gt1() <= kTolerancePercentOffByGt1 && c.nan_inf <= kToleranceNanInfPixels;
+}
+
 Verdict judge(const Comparison& c, const Thresholds& t) {
   Verdict v;
   auto fail = [&v](const std::string& why) {
@@ -79,7 +86,8 @@ Verdict judge(const Comparison& c, const Thresholds& t) {
     fail(buf);
   }
   if (t.any() && c.nan_inf > 0) fail(std::to_string(c.nan_inf) + " NaN/Inf pixels");
-  if (t.any() && c.nan_inf_reference > 0) fail(std::to_string(c.nan_inf_reference) + " NaN/Inf pixels in the reference");
+  if (t.any() && c.nan_inf_reference > 0)
+    fail(std::to_string(c.nan_inf_reference) + " NaN/Inf pixels in the reference");
   return v;
 }
 
@@ -100,13 +108,6 @@ std::vector<uint8_t> diff_image(const Image& test, const Image& ref) {
     }
   }
   return out;
-}
-
-std::string format_psnr(double v) {
-  if (std::isinf(v)) return "inf";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  return buf;
 }
 
 }  // namespace clrt

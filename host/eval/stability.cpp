@@ -7,17 +7,13 @@
 #include <functional>
 #include <memory>
 
-#include "scene/builtin_scene.hpp"
-#include "render/cl_renderer.hpp"
 #include "cl/device.hpp"
-#include "render/precision_support.hpp"
 #include "reference/reference.hpp"
+#include "render/precision_support.hpp"
+#include "render/renderer.hpp"
+#include "scene/builtin_scene.hpp"
 
 namespace clrt {
-
-bool stability_pass(const Comparison& c) {
-  return c.percent_off_by_gt1() <= kStabilityMaxPercentOffByGt1 && c.nan_inf <= kStabilityMaxNanPixels;
-}
 
 bool StabilityResult::as_expected() const {
   if (!supported) return true;
@@ -255,18 +251,18 @@ std::vector<StabilityCase> stability_suite() {
 
 std::vector<StabilityResult> run_stability(const std::vector<StabilityCase>& cases,
                                            const std::vector<Precision>& variants, int width, int height,
-                                           const std::string& device, const KernelConfig& base) {
-  DeviceInfo dev = select_device(device);
+                                           const DeviceInfo& dev, const KernelConfig& base) {
   std::vector<Image> refs;
   for (const auto& c : cases) refs.push_back(render_reference(c.scene, width, height, c.depth));
   std::vector<StabilityResult> out;
   for (Precision p : variants) {
-    KernelConfig cfg = base;
-    cfg.precision = p;
-    cfg.specialize = false;  // one program per variant for the whole suite
+    RenderSettings settings;
+    settings.kernel = base;
+    settings.kernel.precision = p;
+    settings.kernel.specialize = false;  // one program per variant for the whole suite
     const bool supported = unsupported_reason(p, dev).empty();
-    std::unique_ptr<ClRenderer> cl;
-    if (supported) cl = std::make_unique<ClRenderer>(dev, cfg);
+    std::unique_ptr<Renderer> cl;
+    if (supported) cl = std::make_unique<Renderer>(std::vector<DeviceInfo>{dev}, settings);
     for (size_t i = 0; i < cases.size(); ++i) {
       StabilityResult r;
       r.case_index = i;
@@ -276,7 +272,7 @@ std::vector<StabilityResult> run_stability(const std::vector<StabilityCase>& cas
       if (supported) {
         cl->prepare(cases[i].scene, width, height, cases[i].depth);
         r.error = compare_images(cl->render(), refs[i]);
-        r.pass = stability_pass(r.error);
+        r.pass = within_tolerance(r.error);
       }
       out.push_back(r);
     }
@@ -284,43 +280,34 @@ std::vector<StabilityResult> run_stability(const std::vector<StabilityCase>& cas
   return out;
 }
 
-std::vector<std::string> stability_summary(const std::vector<StabilityCase>& cases,
+size_t count_unmet(const std::vector<StabilityResult>& results) {
+  size_t unmet = 0;
+  for (const auto& r : results) unmet += !r.as_expected();
+  return unmet;
+}
+
+std::vector<FamilyOutcome> family_outcomes(const std::vector<StabilityCase>& cases,
                                            const std::vector<StabilityResult>& results) {
-  std::vector<std::string> lines;
   std::vector<Precision> variants;
   for (const auto& r : results)
     if (variants.empty() || variants.back() != r.variant) variants.push_back(r.variant);
-  for (Precision p : variants) {
-    std::string name = precision_name(p);
-    std::vector<std::string> fams;
-    for (const auto& c : cases)
-      if (fams.empty() || fams.back() != c.family) fams.push_back(c.family);
-    for (const auto& fam : fams) {
-      std::string pass, fail;
-      int npass = 0, nfail = 0;
-      bool supported = true;
+  std::vector<std::string> families;
+  for (const auto& c : cases)
+    if (families.empty() || families.back() != c.family) families.push_back(c.family);
+  std::vector<FamilyOutcome> out;
+  for (Precision p : variants)
+    for (const auto& family : families) {
+      FamilyOutcome o;
+      o.variant = p;
+      o.family = family;
       for (const auto& r : results) {
-        if (r.variant != p || cases[r.case_index].family != fam) continue;
-        supported &= r.supported;
-        (r.pass ? npass : nfail)++;
-        std::string& dst = r.pass ? pass : fail;
-        dst += (dst.empty() ? "" : ", ") + cases[r.case_index].param;
+        if (r.variant != p || cases[r.case_index].family != family) continue;
+        o.supported &= r.supported;
+        (r.pass ? o.passed : o.failed).push_back(cases[r.case_index].param);
       }
-      std::string line = name + std::string(8 - std::min<size_t>(7, name.size()), ' ') + fam + ": ";
-      if (!supported)
-        line += "unsupported on this device";
-      else if ((pass + fail).empty())  // one case without a parameter
-        line += nfail ? "fails" : "passes";
-      else if (nfail == 0)
-        line += "passes all (" + pass + ")";
-      else if (npass == 0)
-        line += "fails all (" + fail + ")";
-      else
-        line += "passes " + pass + "; fails " + fail;
-      lines.push_back(line);
+      out.push_back(o);
     }
-  }
-  return lines;
+  return out;
 }
 
 }  // namespace clrt

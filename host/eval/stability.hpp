@@ -1,23 +1,19 @@
 // stability.hpp - a generated suite of stiff and extreme scenes, each run
 // through every precision variant against the double reference, with a
-// pass/fail verdict per variant (`clrt stability`).
+// pass/fail verdict per variant (`clrt stability`). The verdict is
+// within_tolerance (compare.hpp).
 #pragma once
 #include <map>
 #include <string>
 #include <vector>
 
-#include "render/build_options.hpp"
+#include "cl/device.hpp"
 #include "eval/compare.hpp"
+#include "render/build_options.hpp"
 #include "render/precision.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
-
-// The verdict, in one place: a variant passes a case when at most this share
-// of pixels is off by more than one 8-bit level and no pixel is NaN/Inf.
-constexpr double kStabilityMaxPercentOffByGt1 = 0.05;
-constexpr size_t kStabilityMaxNanPixels = 0;
-bool stability_pass(const Comparison& c);
 
 enum class Expect { Any, Pass, Fail };
 
@@ -55,11 +51,21 @@ struct StabilityResult {
 // per variant for the whole suite) at width x height on one device.
 std::vector<StabilityResult> run_stability(const std::vector<StabilityCase>& cases,
                                            const std::vector<Precision>& variants, int width, int height,
-                                           const std::string& device, const KernelConfig& base);
+                                           const DeviceInfo& device, const KernelConfig& base);
 
-// One line per variant and family: where the variant passes and breaks, e.g.
-// "naive   floor radius: fails from 5e3 (all)".
-std::vector<std::string> stability_summary(const std::vector<StabilityCase>& cases,
+// Results whose verdict differs from the case's expectation.
+size_t count_unmet(const std::vector<StabilityResult>& results);
+
+// Where one variant passes and where it breaks within one family of cases.
+struct FamilyOutcome {
+  Precision variant = Precision::Robust;
+  std::string family;
+  bool supported = true;
+  std::vector<std::string> passed, failed;  // the cases' params, mild to extreme ("" for a case without one)
+};
+
+// One per variant (in the results' order) and family (in the suite's order).
+std::vector<FamilyOutcome> family_outcomes(const std::vector<StabilityCase>& cases,
                                            const std::vector<StabilityResult>& results);
 
 }  // namespace clrt

@@ -9,11 +9,11 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <iostream>
 #include <limits>
 #include <stdexcept>
 
 #include "image/image.hpp"
+#include "util/log.hpp"
 
 namespace clrt {
 
@@ -39,7 +39,7 @@ const Font& font() {
       if (OIA::text_size("0", 12, name).defined()) return Font{name, true};
       (void)OIIO::geterror();
     }
-    std::cerr << "clrt: warning: no font found for plot text (install fonts-dejavu-core); drawing without text\n";
+    log_message(LogLevel::Warning, "no font found for plot text (install fonts-dejavu-core); drawing without text");
     return Font{"", false};
   }();
   return f;

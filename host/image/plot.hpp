@@ -34,7 +34,7 @@ struct PlotOptions {
 // Draws the chart and writes it (format from the extension, atomically, like
 // every other image clrt writes). Throws UserError for an unwritable path,
 // std::invalid_argument for series whose x and y lengths differ. If no font is
-// found the chart is still written, without text (warning on stderr).
+// found the chart is still written, without text (and a warning is logged).
 void write_plot(const std::string& path, const std::string& title, const std::string& xlabel, const std::string& ylabel,
                 const std::vector<Series>& series, const PlotOptions& options = {});
 

@@ -1,7 +1,9 @@
-// build_options.cpp - the kernel's build options, derived from config + scene.
+// build_options.cpp - the kernel's build options, derived from config + scene
+// features.
 #include "render/build_options.hpp"
 
-#include "clrt_layout.h"
+#include "render/precision_support.hpp"
+#include "render/scene_buffers.hpp"
 #include "util/error.hpp"
 
 namespace clrt {
@@ -20,54 +22,58 @@ int kernel_lanes(const KernelConfig& cfg) {
   return cfg.lanes;
 }
 
-bool unroll_counts(const Scene& scene) {
-  return scene.spheres.size() <= kMaxUnrolledSpheres && scene.lights.size() <= kMaxUnrolledLights;
+namespace {
+
+std::string define(const std::string& name, int value) { return "-D" + name + "=" + std::to_string(value); }
+std::string define(const std::string& name, size_t value) { return "-D" + name + "=" + std::to_string(value); }
+std::string define(const std::string& name, bool value) { return define(name, value ? 1 : 0); }
+
+// The -D options of a specialized build (kernels/clrt_config.h reads them).
+void add_specialization(const KernelFeatures& features, std::vector<std::string>& options) {
+  options.push_back("-DCLRT_SPECIALIZED");
+  options.push_back(define("CLRT_DEPTH", features.depth));
+  options.push_back(define("CLRT_HAS_AMBIENT", features.has_ambient));
+  options.push_back(define("CLRT_HAS_POINT", features.has_point));
+  options.push_back(define("CLRT_HAS_DIRECTIONAL", features.has_directional));
+  options.push_back(define("CLRT_HAS_SPECULAR", features.has_specular));
+  options.push_back(define("CLRT_HAS_REFLECTIVE", features.traces_reflections()));
+  // Constant counts (and so unrolled loops and per-light types) only for
+  // small scenes: the unrolled code, and with it the build time, grows with
+  // every sphere and light (docs/performance.md, "Bounded specialization").
+  if (!features.unroll_counts) return;
+  options.push_back(define("CLRT_N_SPHERES", features.sphere_count));
+  options.push_back(define("CLRT_N_LIGHTS", features.light_count));
+  if (features.light_types.empty()) return;
+  std::string types = "-DCLRT_LIGHT_TYPES=";
+  for (size_t i = 0; i < features.light_types.size(); ++i)
+    types += (i ? "," : "") + std::to_string(kernel_light_code(features.light_types[i]));
+  options.push_back(types);
+}
+
+}  // namespace
+
+std::vector<std::string> build_option_list(const KernelConfig& cfg, const KernelFeatures& features,
+                                           bool device_has_fp64) {
+  if (!precision_supported(cfg.precision, device_has_fp64))
+    throw UserError("precision fp64 needs a device with cl_khr_fp64; this device has none (use --precision robust)");
+  std::vector<std::string> options = {"-cl-std=CL1.2", define("CLRT_PRECISION", kernel_code(cfg.precision))};
+  if (cfg.denorms_zero) options.push_back("-cl-denorms-are-zero");
+  if (cfg.precision == Precision::Fast) options.push_back("-cl-fast-relaxed-math");
+  if (cfg.count_rays) options.push_back("-DCLRT_COUNT_RAYS");
+  if (int lanes = kernel_lanes(cfg); lanes > 1) options.push_back(define("CLRT_LANES", lanes));
+  if (cfg.specialize) add_specialization(features, options);
+  if (!cfg.extra_options.empty()) options.push_back(cfg.extra_options);
+  return options;
+}
+
+std::string join_build_options(const std::vector<std::string>& options) {
+  std::string joined;
+  for (const std::string& option : options) joined += (joined.empty() ? "" : " ") + option;
+  return joined;
 }
 
 std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth, bool device_has_fp64) {
-  if (cfg.precision == Precision::Fp64 && !device_has_fp64)
-    throw UserError("precision fp64 needs a device with cl_khr_fp64; this device has none (use --precision robust)");
-  std::string o = "-cl-std=CL1.2 -DCLRT_PREC=" + std::to_string(kernel_code(cfg.precision));
-  if (cfg.denorms_zero) o += " -cl-denorms-are-zero";
-  if (cfg.precision == Precision::Fast) o += " -cl-fast-relaxed-math";
-  if (cfg.count_rays) o += " -DCLRT_COUNT_RAYS";
-  if (int lanes = kernel_lanes(cfg); lanes > 1) o += " -DCLRT_LANES=" + std::to_string(lanes);
-  if (cfg.specialize) {
-    bool amb = false, pt = false, dir = false, spec = false, refl = false;
-    for (const auto& l : scene.lights) {
-      amb |= l.type == LightType::Ambient;
-      pt |= l.type == LightType::Point;
-      dir |= l.type == LightType::Directional;
-    }
-    for (const auto& s : scene.spheres) {
-      spec |= s.specular != -1;
-      refl |= s.reflective > 0;
-    }
-    // With no reflective sphere the depth never matters: fold it to 0 so one
-    // program serves every depth.
-    int d = refl ? depth : 0;
-    o += " -DCLRT_SPECIALIZED -DCLRT_DEPTH=" + std::to_string(d) + " -DCLRT_HAS_AMBIENT=" + (amb ? "1" : "0") +
-         " -DCLRT_HAS_POINT=" + (pt ? "1" : "0") + " -DCLRT_HAS_DIRECTIONAL=" + (dir ? "1" : "0") +
-         " -DCLRT_HAS_SPECULAR=" + (spec ? "1" : "0") + " -DCLRT_HAS_REFLECTIVE=" + (refl && d > 0 ? "1" : "0");
-    // Constant counts (and so unrolled loops and per-light types) only for
-    // small scenes: the unrolled code, and with it the build time, grows with
-    // every sphere and light (docs/performance.md, "Bounded specialization").
-    const bool unroll = unroll_counts(scene);
-    if (unroll)
-      o += " -DCLRT_N_SPHERES=" + std::to_string(scene.spheres.size()) +
-           " -DCLRT_N_LIGHTS=" + std::to_string(scene.lights.size());
-    if (unroll && !scene.lights.empty()) {
-      o += " -DCLRT_LIGHT_TYPES=";
-      for (size_t i = 0; i < scene.lights.size(); ++i) {
-        const LightType t = scene.lights[i].type;
-        o += (i ? "," : "") + std::to_string(t == LightType::Ambient ? CLRT_LIGHT_AMBIENT
-                                             : t == LightType::Point ? CLRT_LIGHT_POINT
-                                                                     : CLRT_LIGHT_DIRECTIONAL);
-      }
-    }
-  }
-  if (!cfg.extra_options.empty()) o += " " + cfg.extra_options;
-  return o;
+  return join_build_options(build_option_list(cfg, kernel_features(scene, depth), device_has_fp64));
 }
 
 }  // namespace clrt

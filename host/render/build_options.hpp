@@ -2,8 +2,10 @@
 // one place, so that it can be logged and used as part of the cache key.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "cl/device.hpp"
+#include "render/kernel_features.hpp"
 #include "render/precision.hpp"
 #include "scene/scene.hpp"
 
@@ -14,15 +16,16 @@ struct KernelConfig {
   bool specialize = true;     // derive constants/features from the scene
   bool count_rays = false;    // per-pixel ray counters (bench)
   bool denorms_zero = true;   // -cl-denorms-are-zero (PoCL stalls otherwise)
-  int lanes = 0;              // pixels per work-item (SIMD lanes); 0 = default, see kernel_lanes()
+  int lanes = 0;              // pixels per work-item (SIMD lanes); 0 = the device's default_lanes()
   bool use_cache = true;      // on-disk program binary cache (--no-cache)
   bool verbose = false;       // log build options and cache use on stderr
   std::string kernel_dir;     // "" = embedded kernels
   std::string extra_options;  // appended verbatim (development)
 };
 
-// Pixels per work-item: cfg.lanes if set, else 8 for specialized float
-// builds (float8 lanes, see kernels/trace.cl) and 1 (scalar) otherwise.
+// Pixels per work-item: cfg.lanes if set. The renderer sets it from
+// default_lanes() before building; a config that no device has resolved yet
+// (lanes 0) counts as 8 for specialized float builds and 1 otherwise.
 // UserError for a count other than 1, 4, 8, 16, or > 1 with fp64.
 int kernel_lanes(const KernelConfig& cfg);
 
@@ -33,15 +36,18 @@ int kernel_lanes(const KernelConfig& cfg);
 // docs/performance.md.
 int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev);
 
-// Throws UserError when fp64 is asked of a device without cl_khr_fp64.
-std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth, bool device_has_fp64);
+// The build options, one entry each ("-cl-std=CL1.2", "-DCLRT_LANES=8", ...;
+// cfg.extra_options is one entry, verbatim). Features are used only by
+// specialized builds. Throws UserError when fp64 is asked of a device without
+// cl_khr_fp64, and for a lane count kernel_lanes() rejects.
+std::vector<std::string> build_option_list(const KernelConfig& cfg, const KernelFeatures& features,
+                                           bool device_has_fp64);
 
-// A specialized build makes the sphere and light counts (and each light's
-// type) compile-time constants, and unrolls their loops, only up to these
-// counts; past them it keeps the other specializations and loops over the
-// scene's buffers, so build time stays bounded for any scene
-// (docs/performance.md, "Bounded specialization").
-constexpr size_t kMaxUnrolledSpheres = 16, kMaxUnrolledLights = 16;
-bool unroll_counts(const Scene& scene);
+// The entries joined by single spaces: what clBuildProgram gets, what is
+// logged, and what the program cache key holds.
+std::string join_build_options(const std::vector<std::string>& options);
+
+// join_build_options(build_option_list(cfg, kernel_features(scene, depth), device_has_fp64)).
+std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth, bool device_has_fp64);
 
 }  // namespace clrt

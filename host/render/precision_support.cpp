@@ -3,8 +3,10 @@
 
 namespace clrt {
 
+bool precision_supported(Precision p, bool device_has_fp64) { return p != Precision::Fp64 || device_has_fp64; }
+
 std::string unsupported_reason(Precision p, const DeviceInfo& device) {
-  if (p == Precision::Fp64 && !device.fp64) return "unsupported: device has no cl_khr_fp64";
+  if (!precision_supported(p, device.fp64)) return "unsupported: device has no cl_khr_fp64";
   return "";
 }
 

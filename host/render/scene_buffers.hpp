@@ -1,5 +1,6 @@
 // scene_buffers.hpp - packs a Scene into the layouts of kernels/clrt_layout.h.
 #pragma once
+#include <cstddef>
 #include <vector>
 
 #include "clrt_layout.h"
@@ -19,6 +20,31 @@ struct SceneData {
 // keeps full float precision wherever the scene sits in world space.
 bool camera_relative(Precision p);
 
+// The kernel's code (CLRT_LIGHT_*) of a light type: clrt_light.type and the
+// entries of -DCLRT_LIGHT_TYPES.
+int kernel_light_code(LightType type);
+
+// A double as a float `hi` (the nearest float) plus a float `lo` (what hi
+// misses, rounded): hi + lo carries ~48 bits, and lo is 0 for a float.
+void split_hi_lo(double value, float& hi, float& lo);
+
 SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth);
+
+// One entry of CLRT_LAYOUT_FIELDS as this (host) compiler lays it out; the
+// layout test compares it with the kernel compiler's view.
+struct LayoutField {
+  const char* type;    // e.g. "clrt_sphere"
+  const char* member;  // e.g. "radius"
+  int offset;          // of the member in its struct
+  int size;            // of the member
+  int type_size;       // of its struct
+};
+
+// offsetof is exact on the host (the structs are standard-layout); only the
+// kernel side needs the two-address form, see kernels/layout_probe.cl.
+#define CLRT_HOST_LAYOUT_FIELD(type, member) \
+  LayoutField{#type, #member, int(offsetof(type, member)), int(sizeof(type::member)), int(sizeof(type))},
+inline constexpr LayoutField kLayoutFields[] = {CLRT_LAYOUT_FIELDS(CLRT_HOST_LAYOUT_FIELD)};
+#undef CLRT_HOST_LAYOUT_FIELD
 
 }  // namespace clrt

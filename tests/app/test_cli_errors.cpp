@@ -201,7 +201,7 @@ TEST_CASE("no OpenCL platform: clear error, and the reference engine still works
   CHECK(fs::exists(out));
 }
 
-TEST_CASE("unknown device", "[cli]") {
+TEST_CASE("unknown device", "[cli][opencl]") {
   TempDir dir;
   std::string out = dir / "out.png";
   check_bad_render({"--device", "no-such-device", "--width", "16", "--height", "16"}, out,
@@ -209,7 +209,7 @@ TEST_CASE("unknown device", "[cli]") {
   CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("kernel build failure prints the build log, then one error line", "[cli]") {
+TEST_CASE("kernel build failure prints the build log, then one error line", "[cli][opencl]") {
   TempDir dir;
   fs::copy(clrt_test::source_path("kernels"), dir / "kernels", fs::copy_options::recursive);
   std::ofstream(dir / "kernels/trace.cl", std::ios::app) << "\nthis is not OpenCL C;\n";

@@ -18,7 +18,7 @@
 #include <thread>
 
 #include "render/build_options.hpp"
-#include "render/cl_renderer.hpp"
+#include "render/renderer.hpp"
 #include "cli_run.hpp"
 #include "eval/compare.hpp"
 #include "util/error.hpp"
@@ -79,7 +79,7 @@ std::vector<std::string> entries(const std::string& dir) {
 
 // ---- 1. symlink attacks and temp files --------------------------------------
 
-TEST_CASE("output goes through an exclusive temp file: planted links are never followed", "[cli][hardening]") {
+TEST_CASE("output goes through an exclusive temp file: planted links are never followed", "[cli][hardening][opencl]") {
   TempDir dir;
   // What the old predictable temp name would have been: a planted symlink to
   // a victim file must stay untouched.
@@ -100,7 +100,7 @@ TEST_CASE("output goes through an exclusive temp file: planted links are never f
   for (const auto& e : dir.entries()) CHECK_FALSE(e.rfind(".clrt-", 0) == 0);
 }
 
-TEST_CASE("a 250-character output name still works", "[cli][hardening]") {
+TEST_CASE("a 250-character output name still works", "[cli][hardening][opencl]") {
   TempDir dir;
   const std::string name = std::string(246, 'n') + ".png";
   RunResult r = run_clrt({"render", kDemo, "-o", dir / name, "--width", "8", "--height", "8"});
@@ -111,7 +111,7 @@ TEST_CASE("a 250-character output name still works", "[cli][hardening]") {
 
 // ---- 2. full disks ---------------------------------------------------------
 
-TEST_CASE("a full disk is an error, with no output and no temp file", "[cli][hardening]") {
+TEST_CASE("a full disk is an error, with no output and no temp file", "[cli][hardening][opencl]") {
   // /dev/full: every write fails with ENOSPC (no privileges needed).
   check_error(run_clrt({"render", kDemo, "-o", "/dev/full", "--width", "32", "--height", "32"}),
               {"/dev/full: cannot write output: No space left on device"});
@@ -146,7 +146,7 @@ TEST_CASE("a full disk is an error, with no output and no temp file", "[cli][har
 
 // ---- 3. launch sizes --------------------------------------------------------
 
-TEST_CASE("a --local size beyond the device's limits is bad input, not a blank image", "[cli][hardening]") {
+TEST_CASE("a --local size beyond the device's limits is bad input, not a blank image", "[cli][hardening][opencl]") {
   TempDir dir;
   const std::string out = dir / "out.png";
   for (const char* local : {"2147483647x1", "1x2147483647", "65536x65536"}) {
@@ -245,7 +245,7 @@ TEST_CASE("at the edges of the accepted range no engine or precision gives a NaN
       clrt::KernelConfig cfg;
       cfg.precision = p;
       const clrt::Comparison c =
-          clrt::compare_images(clrt::render_opencl(s, 32, 24, 3, clrt_test::test_device_spec(), cfg), ref);
+          clrt::compare_images(clrt_test::render_cl(s, 32, 24, 3, cfg), ref);
       CHECK(c.nan_inf == 0);
       CHECK(c.nan_inf_reference == 0);
     }
@@ -254,7 +254,7 @@ TEST_CASE("at the edges of the accepted range no engine or precision gives a NaN
 
 // ---- 6. cached binaries are untrusted ----------------------------------------
 
-TEST_CASE("a cached binary whose load crashed is never loaded again", "[cli][hardening][cache]") {
+TEST_CASE("a cached binary whose load crashed is never loaded again", "[cli][hardening][cache][opencl]") {
   TempDir cache;
   const std::string env = "CLRT_CACHE_DIR=" + clrt_test::shell_quote(cache.path().string());
   const std::vector<std::string> render = {"render", kDemo, "--width", "16", "--height", "16", "--verbose", "-o"};
@@ -308,7 +308,7 @@ TEST_CASE("a cached binary whose load crashed is never loaded again", "[cli][har
   }
 }
 
-TEST_CASE("verbose output says when nothing was stored in the cache", "[cli][hardening][cache]") {
+TEST_CASE("verbose output says when nothing was stored in the cache", "[cli][hardening][cache][opencl]") {
   TempDir out;
   RunResult r =
       run_clrt({"render", kDemo, "--width", "8", "--height", "8", "--verbose", "--no-cache", "-o", out / "a.png"});
@@ -322,7 +322,7 @@ TEST_CASE("verbose output says when nothing was stored in the cache", "[cli][har
   CHECK_THAT(ro.err, !Contains("built, stored in cache"));
 }
 
-TEST_CASE("an unusable XDG_CACHE_HOME is named, not reported as a missing device", "[cli][hardening]") {
+TEST_CASE("an unusable XDG_CACHE_HOME is named, not reported as a missing device", "[cli][hardening][opencl]") {
   TempDir dir;
   const std::string file = dir.write("not-a-dir", "x");
   RunResult r = run_clrt({"devices"}, "XDG_CACHE_HOME=" + clrt_test::shell_quote(file));
@@ -361,7 +361,7 @@ TEST_CASE("100,000 ambient lights render (before: 330 s of build and first launc
 
 // ---- 8. outputs that are not regular files -----------------------------------
 
-TEST_CASE("symlinks, devices, FIFOs and '-' are written to, not replaced", "[cli][hardening]") {
+TEST_CASE("symlinks, devices, FIFOs and '-' are written to, not replaced", "[cli][hardening][opencl]") {
   TempDir dir;
   SECTION("a symlink OUT writes its target and stays a link") {
     fs::create_symlink("target.png", dir / "link.png");
@@ -432,7 +432,7 @@ TEST_CASE("a signal removes the scratch files and exits 128 + signal", "[hardeni
   CHECK_FALSE(fs::exists(fs::path(path).parent_path()));
 }
 
-TEST_CASE("SIGINT during a render: exit 130, one line, nothing written", "[cli][hardening]") {
+TEST_CASE("SIGINT during a render: exit 130, one line, nothing written", "[cli][hardening][opencl]") {
   TempDir dir;
   const std::string out = dir / "out.png";
   // The reference engine at 4096x4096 takes seconds: interrupt it.
@@ -456,7 +456,7 @@ TEST_CASE("SIGINT during a render: exit 130, one line, nothing written", "[cli][
 
 // ---- 10. user input that used to reach the "bug" exit status -----------------
 
-TEST_CASE("odd user input is bad input (exit 2), never an internal error", "[cli][hardening]") {
+TEST_CASE("odd user input is bad input (exit 2), never an internal error", "[cli][hardening][opencl]") {
   TempDir dir;
   const std::string out = dir / "out.png";
   check_error(run_clrt({"render", kDemo, "-o", out, "--device", "99999999999999999999999"}), {"unknown device"});

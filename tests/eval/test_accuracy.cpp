@@ -5,9 +5,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "eval/accuracy.hpp"
-#include "cli_run.hpp"
 #include "cl/device.hpp"
+#include "cli_run.hpp"
+#include "eval/accuracy.hpp"
 #include "render/precision_support.hpp"
 #include "test_util.hpp"
 
@@ -17,11 +17,10 @@ TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl]") {
   AccuracySettings s;
   s.width = s.height = 200;
   s.repeat = 3;
-  s.device = clrt_test::test_device_spec();
   std::vector<NamedScene> scenes{{"cgfs-demo.json", clrt_test::load("scenes/cgfs-demo.json")}};
-  auto rows = measure_accuracy(scenes, s);
+  const DeviceInfo dev = clrt_test::test_device();
+  auto rows = measure_accuracy(scenes, dev, s);
   REQUIRE(rows.size() == all_precisions().size());
-  DeviceInfo dev = clrt_test::test_device();
   const AccuracyRow *naive = nullptr, *robust = nullptr;
   for (const auto& r : rows) {
     INFO(r.variant);
@@ -56,7 +55,7 @@ TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl]") {
   CHECK(naive->error.shadow_flips + naive->error.hit_flips >= robust->error.shadow_flips + robust->error.hit_flips);
 }
 
-TEST_CASE("clrt accuracy writes table, JSON, CSV and a non-empty plot", "[accuracy][cli]") {
+TEST_CASE("clrt accuracy writes table, JSON, CSV and a non-empty plot", "[accuracy][cli][opencl]") {
   clrt_test::TempDir dir;
   const std::string csv = dir / "a.csv", png = dir / "a.png";
   auto r =

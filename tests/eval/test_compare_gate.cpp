@@ -41,7 +41,7 @@ TEST_CASE("thresholds: pass, fail on each limit, NaN always fails", "[compare]")
   CHECK_FALSE(judge(compare_images(test, ref), Thresholds{100, 255}).pass);
 }
 
-TEST_CASE("clrt compare exit codes: 0 within the limits, 1 outside, 2 bad input", "[cli][compare]") {
+TEST_CASE("clrt compare exit codes: 0 within the limits, 1 outside, 2 bad input", "[cli][compare][opencl]") {
   const std::string demo = source_path("scenes/cgfs-demo.json");
   // Robust float32 on the demo: a handful of silhouette pixels at most.
   auto pass = run_clrt({"compare", demo, "--width", "80", "--height", "60", "--fail-percent", "1"});
@@ -79,7 +79,7 @@ TEST_CASE("clrt compare exit codes: 0 within the limits, 1 outside, 2 bad input"
   }
 }
 
-TEST_CASE("clrt compare --image: a rendered file against the reference", "[cli][compare]") {
+TEST_CASE("clrt compare --image: a rendered file against the reference", "[cli][compare][opencl]") {
   clrt_test::TempDir dir;
   const std::string demo = source_path("scenes/cgfs-demo.json");
   REQUIRE(run_clrt({"render", demo, "--width", "64", "--height", "48", "-o", dir / "demo.png"}).status == 0);
@@ -104,7 +104,7 @@ TEST_CASE("clrt compare --image: a rendered file against the reference", "[cli][
   CHECK(text.one_line_error());
 }
 
-TEST_CASE("devices --check exits 1 when a device fails its self-test", "[cli][compare]") {
+TEST_CASE("devices --check exits 1 when a device fails its self-test", "[cli][compare][opencl]") {
   // fp64 on a device without cl_khr_fp64 (Mesa rusticl's llvmpipe) fails the
   // self-test; the check ran, so the status is 1, not 2.
   const std::string rusticl = "RUSTICL_ENABLE=${RUSTICL_ENABLE:-swrast}";  // Mesa's llvmpipe device

@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cli_run.hpp"
 #include "cl/device.hpp"
+#include "cli_run.hpp"
 #include "eval/stability.hpp"
 #include "test_util.hpp"
 
@@ -15,12 +15,12 @@ TEST_CASE("stability verdict: 0.05% of pixels off by > 1 and no NaN", "[stabilit
   Comparison c;
   c.pixels = 100000;
   c.off_by_gt1 = 50;  // exactly 0.05%
-  CHECK(stability_pass(c));
+  CHECK(within_tolerance(c));
   c.off_by_gt1 = 51;
-  CHECK_FALSE(stability_pass(c));
+  CHECK_FALSE(within_tolerance(c));
   c.off_by_gt1 = 0;
   c.nan_inf = 1;  // a single NaN pixel fails
-  CHECK_FALSE(stability_pass(c));
+  CHECK_FALSE(within_tolerance(c));
 }
 
 TEST_CASE("the suite covers the issue's families with stable and extreme cases", "[stability]") {
@@ -71,7 +71,7 @@ TEST_CASE("every variant meets its expectations on the whole suite (160x120)", "
   // shows the verdict can fail); fp64 must pass every stable case.
   const auto cases = stability_suite();
   DeviceInfo dev = clrt_test::test_device();
-  const auto results = run_stability(cases, all_precisions(), 160, 120, clrt_test::test_device_spec(), KernelConfig{});
+  const auto results = run_stability(cases, all_precisions(), 160, 120, dev, KernelConfig{});
   REQUIRE(results.size() == cases.size() * all_precisions().size());
   size_t naive_floor_fails = 0;
   for (const auto& r : results) {
@@ -97,11 +97,11 @@ TEST_CASE("every variant meets its expectations on the whole suite (160x120)", "
     }
   }
   CHECK(naive_floor_fails == 4);
-  auto summary = stability_summary(cases, results);
+  auto summary = family_outcomes(cases, results);
   CHECK(summary.size() > 5);
 }
 
-TEST_CASE("clrt stability --json reports every case x variant and the summary", "[stability][cli]") {
+TEST_CASE("clrt stability --json reports every case x variant and the summary", "[stability][cli][opencl]") {
   // Tiny images: only the report's structure is checked here (verdicts at
   // this size are not meaningful: one pixel is 0.08%).
   auto r = clrt_test::run_clrt({"stability", "--json", "--width", "40", "--height", "30"});
@@ -109,7 +109,7 @@ TEST_CASE("clrt stability --json reports every case x variant and the summary", 
   REQUIRE(r.status == 0);
   auto j = nlohmann::json::parse(r.out);
   CHECK(j["results"].size() == stability_suite().size() * all_precisions().size());
-  CHECK(j["max_percent_off_by_gt1"] == kStabilityMaxPercentOffByGt1);
+  CHECK(j["max_percent_off_by_gt1"] == kTolerancePercentOffByGt1);
   CHECK(j["summary"].size() > 5);
   CHECK(j["results"][0]["case"] == "floor radius 5e3");
   CHECK(j["results"][0]["variant"] == "naive");

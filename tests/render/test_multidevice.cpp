@@ -4,9 +4,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "render/cl_renderer.hpp"
 #include "cli_run.hpp"
-#include "render/multi_renderer.hpp"
+#include "render/renderer.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;
@@ -62,44 +61,31 @@ TEST_CASE("two PoCL devices render the same bytes as one", "[opencl][multidevice
 TEST_CASE("two contexts on one device share a frame exactly", "[opencl][multidevice]") {
   DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-camera.json");
-  ClRenderer one(dev, KernelConfig{});
-  one.prepare(s, 200, 150, 3);
-  Image want = one.render();
-  MultiRenderer multi({dev, dev}, KernelConfig{});
-  multi.set_tile_policy(TilePolicy{0, 5});
+  Image want = clrt_test::render_cl(s, 200, 150, 3, KernelConfig{});
+  Renderer multi({dev, dev}, RenderSettings{KernelConfig{}, TilePolicy{0, 5}, {}});
   multi.prepare(s, 200, 150, 3);
   Image got = multi.render();
   CHECK(got.rgb == want.rgb);
   CHECK(got.hit == want.hit);
   CHECK(got.shadowed == want.shadowed);
-  REQUIRE(multi.shares().size() == 2);
-  CHECK(multi.shares()[0].rows + multi.shares()[1].rows == 150);
-  CHECK(multi.shares()[0].tiles + multi.shares()[1].tiles == 30);  // 150 rows / 5
+  const auto& shares = multi.stats().shares;
+  REQUIRE(shares.size() == 2);
+  CHECK(shares[0].rows + shares[1].rows == 150);
+  CHECK(shares[0].tiles + shares[1].tiles == 30);  // 150 rows / 5
 }
 
 TEST_CASE("a launch-time limit splits one device's frame into bands", "[opencl]") {
-  DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
-  ClRenderer whole(dev, KernelConfig{});
-  whole.set_tile_policy(TilePolicy{0, 0});  // no limit on any device type
+  Renderer whole = clrt_test::renderer(KernelConfig{}, TilePolicy{0, 0});  // no limit on any device type
   whole.prepare(s, 160, 120, 2);
   Image want = whole.render();
-  CHECK(whole.timings().launches == 1);
-  ClRenderer limited(dev, KernelConfig{});
+  CHECK(whole.stats().launches == 1);
   // A limit far below any real launch: after the 16-row calibration band
   // every band shrinks to one row.
-  limited.set_tile_policy(TilePolicy{1e-6, 0});
+  Renderer limited = clrt_test::renderer(KernelConfig{}, TilePolicy{1e-6, 0});
   limited.prepare(s, 160, 120, 2);
   Image got = limited.render();
-  CHECK(limited.timings().launches == 1 + (120 - 16));
+  CHECK(limited.stats().launches == 1 + (120 - 16));
   CHECK(got.rgb == want.rgb);
   CHECK(got.hit == want.hit);
-}
-
-TEST_CASE("device default launch limits", "[opencl]") {
-  CHECK(launch_limit_ms(TilePolicy{}, "CPU") == 0);
-  CHECK(launch_limit_ms(TilePolicy{}, "GPU") == 500);
-  CHECK(launch_limit_ms(TilePolicy{}, "ACCELERATOR") == 500);
-  CHECK(launch_limit_ms(TilePolicy{120, 0}, "GPU") == 120);
-  CHECK(launch_limit_ms(TilePolicy{0, 0}, "GPU") == 0);
 }

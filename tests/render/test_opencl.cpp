@@ -2,8 +2,9 @@
 // default device (PoCL in CI), and the host/kernel layout agreement.
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <iterator>
 
-#include "render/cl_renderer.hpp"
+#include "render/renderer.hpp"
 #include "eval/compare.hpp"
 #include "cl/device.hpp"
 #include "cl/kernel_source.hpp"
@@ -17,30 +18,25 @@ using namespace clrt;
 using clrt_test::shipped_scenes;
 
 TEST_CASE("kernel and host agree on the shared layouts", "[opencl][layout]") {
+  // Both sides walk CLRT_LAYOUT_FIELDS: the kernel reports (offset, size,
+  // struct size) per entry, the host has them in kLayoutFields.
   DeviceInfo dev = clrt_test::test_device();
   cl::Context ctx(dev.device);
   cl::CommandQueue q(ctx, dev.device);
   cl::Program prog = build_program(ctx, dev, load_kernel_source("layout_probe.cl"), "-cl-std=CL1.2");
   cl::Kernel k(prog, "layout_probe");
-  cl::Buffer buf(ctx, CL_MEM_WRITE_ONLY, 64 * sizeof(cl_int));
+  const size_t n = std::size(kLayoutFields);
+  cl::Buffer buf(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(cl_int));
   k.setArg(0, buf);
   q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(1));
-  std::vector<cl_int> got(64);
+  std::vector<cl_int> got(3 * n);
   q.enqueueReadBuffer(buf, CL_TRUE, 0, got.size() * sizeof(cl_int), got.data());
-  const std::vector<int> host = {
-      int(sizeof(clrt_sphere)),           int(offsetof(clrt_sphere, radius)),     int(offsetof(clrt_sphere, center_lo)),
-      int(offsetof(clrt_sphere, radius_lo)), int(offsetof(clrt_sphere, color)),   int(offsetof(clrt_sphere, specular)),
-      int(offsetof(clrt_sphere, reflective)), int(sizeof(clrt_light)),           int(offsetof(clrt_light, intensity)),
-      int(offsetof(clrt_light, vec)),     int(offsetof(clrt_light, vec_lo)),      int(sizeof(clrt_params)),
-      int(offsetof(clrt_params, n_lights)), int(offsetof(clrt_params, viewport)), int(offsetof(clrt_params, proj_d)),
-      int(offsetof(clrt_params, epsilon)), int(offsetof(clrt_params, origin)),    int(offsetof(clrt_params, origin_lo)),
-      int(offsetof(clrt_params, rotation)), int(offsetof(clrt_params, rotation_lo)),
-      int(offsetof(clrt_params, background)), int(offsetof(clrt_params, proj_d_lo)),
-      int(offsetof(clrt_params, viewport_lo)), int(offsetof(clrt_params, epsilon_lo)), int(sizeof(clrt_ray_counts)),
-      int(offsetof(clrt_ray_counts, sphere_tests))};
-  for (size_t i = 0; i < host.size(); ++i) {
-    INFO("layout entry " << i);
-    CHECK(got[i] == host[i]);
+  for (size_t i = 0; i < n; ++i) {
+    const LayoutField& f = kLayoutFields[i];
+    INFO(f.type << "." << f.member);
+    CHECK(got[3 * i + 0] == f.offset);
+    CHECK(got[3 * i + 1] == f.size);
+    CHECK(got[3 * i + 2] == f.type_size);
   }
 }
 
@@ -51,8 +47,7 @@ TEST_CASE("OpenCL (robust float32) matches the reference on every shipped scene"
   // only pixels allowed to differ by more than rounding. Pixels off by one
   // level come from float rounding of values near .5 and are not limited.
   KernelConfig cfg;  // robust, specialized
-  DeviceInfo dev = clrt_test::test_device();
-  ClRenderer cl(dev, cfg);
+  Renderer cl = clrt_test::renderer(cfg);
   for (const auto& path : shipped_scenes()) {
     Scene s = load_scene(path);
     for (int depth : {0, 1, 3, 5}) {
@@ -78,7 +73,7 @@ TEST_CASE("OpenCL fp64 reproduces the reference", "[opencl]") {
   }
   KernelConfig cfg;
   cfg.precision = Precision::Fp64;
-  ClRenderer cl(dev, cfg);
+  Renderer cl = clrt_test::renderer(cfg);
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
   for (int depth : {0, 3}) {
     Image ref = render_reference(s, 600, 600, depth);
@@ -98,27 +93,22 @@ TEST_CASE("OpenCL fp64 reproduces the reference", "[opencl]") {
 TEST_CASE("naive float32 shows the floor acne the robust mode removes", "[opencl]") {
   // Documents the measured fact the robust mode exists for: the book's
   // formulas in float32 self-hit the radius-5000 floor on ~2% of pixels.
-  DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
   Image ref = render_reference(s, 600, 600, 3);
   KernelConfig naive;
   naive.precision = Precision::Naive;
-  Comparison c = compare_images(render_opencl(s, 600, 600, 3, clrt_test::test_device_spec(), naive), ref);
+  Comparison c = compare_images(clrt_test::render_cl(s, 600, 600, 3, naive), ref);
   CHECK(c.percent_off_by_gt1() > 0.5);
 }
 
 TEST_CASE("tiled rendering equals the single-launch image", "[opencl]") {
   Scene s = clrt_test::load("scenes/cgfs-camera.json");
-  DeviceInfo dev = clrt_test::test_device();
-  ClRenderer whole(dev, KernelConfig{});
-  whole.prepare(s, 203, 157, 3);  // odd sizes on purpose
-  Image a = whole.render();
-  ClRenderer tiled(dev, KernelConfig{});
-  tiled.set_tile_policy(TilePolicy{0, 13});  // 13-row bands: 157 = 12*13 + 1
-  tiled.set_local_size(8, 4);
+  Image a = clrt_test::render_cl(s, 203, 157, 3, KernelConfig{});  // odd sizes on purpose
+  // 13-row bands: 157 = 12*13 + 1
+  Renderer tiled = clrt_test::renderer(KernelConfig{}, TilePolicy{0, 13}, LocalSize{8, 4});
   tiled.prepare(s, 203, 157, 3);
   Image b = tiled.render();
-  CHECK(tiled.timings().launches == 13);
+  CHECK(tiled.stats().launches == 13);
   CHECK(a.rgb == b.rgb);
   CHECK(a.hit == b.hit);
   CHECK(a.shadowed == b.shadowed);

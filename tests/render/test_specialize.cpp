@@ -5,9 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 
-#include "render/cl_renderer.hpp"
+#include "render/renderer.hpp"
 #include "cli_run.hpp"
 #include "cl/device.hpp"
 #include "cl/program_cache.hpp"
@@ -18,12 +17,12 @@ using namespace clrt;
 namespace {
 
 Image render_with(const DeviceInfo& dev, KernelConfig cfg, const Scene& s, int w, int h, int depth,
-                  RayCounts* counts = nullptr, RenderTimings* t = nullptr) {
-  ClRenderer r(dev, cfg);
+                  RayCounts* counts = nullptr, FrameStats* t = nullptr) {
+  Renderer r({dev}, RenderSettings{cfg, {}, {}});
   r.prepare(s, w, h, depth);
   Image img = r.render();
-  if (counts) *counts = r.ray_counts();
-  if (t) *t = r.timings();
+  if (counts) *counts = r.stats().rays;
+  if (t) *t = r.stats();
   return img;
 }
 
@@ -90,7 +89,7 @@ TEST_CASE("program cache: a second build is a hit and renders the same image", "
   DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
   KernelConfig cfg;
-  RenderTimings t1, t2, t3, t4;
+  FrameStats t1, t2, t3, t4;
   Image first = render_with(dev, cfg, s, 64, 48, 2, nullptr, &t1);
   CHECK_FALSE(t1.build_cached);
   REQUIRE(dir.entries().size() == 1);  // one entry, no temporary left behind
@@ -116,26 +115,12 @@ TEST_CASE("program cache: a second build is a hit and renders the same image", "
   // --no-cache: neither reads nor writes.
   KernelConfig off = cfg;
   off.use_cache = false;
-  RenderTimings t5;
+  FrameStats t5;
   std::filesystem::remove(entry);
   render_with(dev, off, s, 64, 48, 2, nullptr, &t5);
   CHECK_FALSE(t5.build_cached);
   CHECK(dir.entries().empty());
   ::setenv("CLRT_CACHE_DIR", old.c_str(), 1);
-}
-
-TEST_CASE("program cache key covers source, options and device", "[cache]") {
-  ProgramCacheKey a{"src", "-DX=1", "dev", "drv", "plat"};
-  ProgramCacheKey b = a, c = a, d = a;
-  b.options = "-DX=2";
-  c.source = "src ";
-  d.driver = "drv2";
-  CHECK(a.hash() != b.hash());
-  CHECK(a.hash() != c.hash());
-  CHECK(a.hash() != d.hash());
-  // Length-prefixed fields: moving text between fields changes the key.
-  ProgramCacheKey e{"srcx", "", "dev", "drv", "plat"}, f{"src", "x", "dev", "drv", "plat"};
-  CHECK(e.text() != f.text());
 }
 
 TEST_CASE("ray counters match counts derived by hand", "[opencl][rays]") {
@@ -181,74 +166,4 @@ TEST_CASE("ray counters match counts derived by hand", "[opencl][rays]") {
     CHECK(c.shadow == px * (depth + 1) * 2);
     CHECK(c.sphere_tests == 2 * (c.primary + c.reflection + c.shadow));
   }
-}
-
-TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench]") {
-  auto r = clrt_test::run_clrt({"bench", clrt_test::source_path("scenes/cgfs-demo.json"), "--width", "40", "--height",
-                                "30", "--depth", "1", "--repeat", "2", "--json"});
-  INFO(r.err);
-  REQUIRE(r.status == 0);
-  auto j = nlohmann::json::parse(r.out);
-  for (const char* k :
-       {"kernel_ms_median", "kernel_ms_min", "kernel_ms_max", "rays_total", "rays_primary", "rays_shadow",
-        "rays_reflection", "mrays_per_s", "reference_ms", "omp_ms_median", "opencl_speedup_vs_omp", "build_cold_ms",
-        "build_warm_ms", "upload_ms", "download_ms", "end_to_end_ms", "gflops", "peak_gflops", "ns_per_sphere_test"})
-    CHECK(j.contains(k));
-  CHECK(j["kernel_ms"].size() == 2);
-  CHECK(j["build_warm_cached"] == true);
-  // Every timed figure comes with N, median, mean, sd, min and max.
-  for (const char* k : {"kernel", "frame", "download", "omp", "speedup_vs_omp", "kernel_speedup_vs_omp", "build_cold",
-                        "build_warm", "upload", "reference"}) {
-    INFO(k);
-    REQUIRE(j.contains(k));
-    for (const char* f : {"n", "median", "mean", "sd", "min", "max"}) CHECK(j[k].contains(f));
-    CHECK(j[k]["min"].get<double>() <= j[k]["median"].get<double>());
-    CHECK(j[k]["median"].get<double>() <= j[k]["max"].get<double>());
-  }
-  CHECK(j["frame"]["n"] == 2);
-  CHECK(j["omp"]["n"] == 2);
-  CHECK(j["build_cold"]["n"] == 2);  // min(--repeat, 3)
-  // The headline ratio is frame against frame: the same work on both sides.
-  CHECK(j["opencl_speedup_vs_omp"] == j["speedup_vs_omp"]["median"]);
-  CHECK(j["kernel"]["median"].get<double>() <= j["frame"]["median"].get<double>());
-  // PoCL's events are plausible; the peak is measured, not assumed.
-  CHECK(j["kernel_time_source"] == "events");
-  REQUIRE(j["peaks"].size() == 1);
-  CHECK(j["peaks"][0]["measured"] == true);
-  CHECK(j["peak_gflops"].get<double>() > 0);
-  // Every pixel shoots one primary ray; the totals add up.
-  CHECK(j["rays_primary"] == 40 * 30);
-  CHECK(j["rays_total"].get<uint64_t>() ==
-        j["rays_primary"].get<uint64_t>() + j["rays_shadow"].get<uint64_t>() + j["rays_reflection"].get<uint64_t>());
-}
-
-TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep]") {
-  clrt_test::TempDir dir;
-  auto r =
-      clrt_test::run_clrt({"sweep", clrt_test::source_path("scenes/cgfs-demo.json"), "--depths", "0:2", "--width", "32",
-                           "--height", "24", "--repeat", "1", "--csv", dir / "s.csv", "--plot", dir / "s.png"});
-  INFO(r.err);
-  REQUIRE(r.status == 0);
-  CHECK(r.err.find('\r') == std::string::npos);  // no progress bar when stderr is not a terminal
-  std::istringstream csv(clrt_test::slurp(dir / "s.csv"));
-  std::string header, line;
-  std::getline(csv, header);
-  std::vector<std::string> rows;
-  while (std::getline(csv, line)) rows.push_back(line);
-  REQUIRE(rows.size() == 3);
-  CHECK(header.rfind("device,depth,kernel_ms_median", 0) == 0);
-  // Depth 0 traces no reflection ray: the rays_reflection column is 0.
-  auto column = [&](const std::string& row, const std::string& name) {
-    std::istringstream h(header), v(row);
-    std::string hn, vv;
-    while (std::getline(h, hn, ',') && std::getline(v, vv, ','))
-      if (hn == name) return vv;
-    return std::string("?");
-  };
-  CHECK(column(rows[0], "depth") == "0");
-  CHECK(column(rows[0], "rays_reflection") == "0");
-  CHECK(column(rows[0], "rays_primary") == "768");
-  CHECK(column(rows[2], "depth") == "2");
-  CHECK(std::filesystem::file_size(dir / "s.png") > 0);
-  CHECK(std::filesystem::file_size(dir / "s-rays.png") > 0);
 }

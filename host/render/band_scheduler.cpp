@@ -1,15 +1,13 @@
-// tile_scheduler.cpp - dynamic, adaptive band scheduling over devices.
-#include "render/tile_scheduler.hpp"
+// band_scheduler.cpp - dynamic, adaptive band scheduling over devices.
+#include "render/band_scheduler.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <chrono>
 #include <cmath>
 #include <exception>
 #include <mutex>
 #include <thread>
 
-#include "render/cl_renderer.hpp"
 #include "cl/launch_timing.hpp"
 #include "util/timer.hpp"
 
@@ -20,34 +18,21 @@ double launch_limit_ms(const TilePolicy& policy, const std::string& device_type)
   return is_cpu_type(device_type) ? 0.0 : 500.0;
 }
 
+bool BandQueue::take(int want, bool guided, int& y0, int& rows) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  int left = height_ - next_;
+  if (left <= 0) return false;
+  int n = std::min(want, left);
+  if (guided && workers_ > 1) n = std::min(n, std::max(1, (left + 2 * workers_ - 1) / (2 * workers_)));
+  y0 = next_;
+  rows = n;
+  next_ += n;
+  return true;
+}
+
 namespace {
 
-class BandQueue {
- public:
-  BandQueue(int height, int workers) : height_(height), workers_(workers) {}
-
-  // Takes up to `want` rows; when `guided` and there are several workers, at
-  // most half of an even share of what is left (guided scheduling), so the
-  // frame ends with small bands and no device waits long for the slowest.
-  // Returns false when the frame is done.
-  bool take(int want, bool guided, int& y0, int& rows) {
-    std::lock_guard<std::mutex> lock(m_);
-    int left = height_ - next_;
-    if (left <= 0) return false;
-    int n = std::min(want, left);
-    if (guided && workers_ > 1) n = std::min(n, std::max(1, (left + 2 * workers_ - 1) / (2 * workers_)));
-    y0 = next_;
-    rows = n;
-    next_ += n;
-    return true;
-  }
-
- private:
-  std::mutex m_;
-  int height_, workers_, next_ = 0;
-};
-
-void run_worker(ClRenderer& r, BandQueue& queue, Image& img, const TilePolicy& policy, int n_workers,
+void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolicy& policy, int n_workers,
                 DeviceShare& share) {
   const int W = img.width, H = img.height;
   const double limit = launch_limit_ms(policy, r.device().type);
@@ -88,18 +73,7 @@ void run_worker(ClRenderer& r, BandQueue& queue, Image& img, const TilePolicy& p
 
 }  // namespace
 
-void print_shares(const std::vector<DeviceShare>& shares, std::FILE* to) {
-  long long total = 0;
-  for (const auto& s : shares) total += s.rows;
-  for (size_t i = 0; i < shares.size(); ++i) {
-    const auto& s = shares[i];
-    std::fprintf(to, "  device %zu %-48.48s %4d tiles, %6lld rows (%5.1f%%), kernel %9.2f ms, busy %9.2f ms, longest launch %8.2f ms%s\n",
-                i, s.device.c_str(), s.tiles, s.rows, total ? 100.0 * s.rows / total : 0.0, s.kernel_ms, s.busy_ms,
-                s.max_launch_ms, time_source_note(s.host_timed_launches, s.tiles).c_str());
-  }
-}
-
-std::vector<DeviceShare> render_bands(const std::vector<ClRenderer*>& workers, Image& img, const TilePolicy& policy) {
+std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img, const TilePolicy& policy) {
   std::vector<DeviceShare> shares(workers.size());
   for (size_t i = 0; i < workers.size(); ++i) shares[i].device = workers[i]->device().name;
   BandQueue queue(img.height, int(workers.size()));

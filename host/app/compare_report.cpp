@@ -1,7 +1,8 @@
-// compare_json.cpp - Comparison -> JSON.
-#include "eval/compare_json.hpp"
+// compare_report.cpp - Comparison -> JSON and PSNR text.
+#include "app/compare_report.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace clrt {
 
@@ -21,6 +22,13 @@ nlohmann::json comparison_json(const Comparison& c) {
           {"nan_inf_pixels_reference", c.nan_inf_reference},
           {"hit_flips", c.hit_flips},
           {"shadow_flips", c.shadow_flips}};
+}
+
+std::string format_psnr(double psnr) {
+  if (std::isinf(psnr)) return "inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", psnr);
+  return buf;
 }
 
 }  // namespace clrt

@@ -1,18 +1,17 @@
-// tile_scheduler.hpp - splits a frame into horizontal bands (tiles of full
+// band_scheduler.hpp - splits a frame into horizontal bands (tiles of full
 // width) handed out dynamically to one or more devices: each device takes its
 // next band when it finishes the previous one, so faster devices take more.
 // Band heights adapt per device so no kernel launch exceeds a time limit (GPU
 // watchdogs) and no band exceeds the device's largest allocation.
 #pragma once
-#include <cstdio>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "image/image.hpp"
+#include "render/device_renderer.hpp"
 
 namespace clrt {
-
-class ClRenderer;
 
 struct TilePolicy {
   // Upper bound for one kernel launch in ms; 0 = none. The default (-1)
@@ -23,6 +22,7 @@ struct TilePolicy {
   int band_rows = 0;
 };
 
+// What one device did in a frame.
 struct DeviceShare {
   std::string device;
   int tiles = 0;                // bands rendered
@@ -33,14 +33,27 @@ struct DeviceShare {
   double max_launch_ms = 0;
 };
 
+// The rows of a frame, taken band by band by several threads.
+class BandQueue {
+ public:
+  BandQueue(int height, int workers) : height_(height), workers_(workers) {}
+
+  // Takes up to `want` rows; when `guided` and there are several workers, at
+  // most half of an even share of what is left (guided scheduling), so the
+  // frame ends with small bands and no device waits long for the slowest.
+  // Returns false when the frame is done.
+  bool take(int want, bool guided, int& y0, int& rows);
+
+ private:
+  std::mutex mutex_;
+  int height_, workers_, next_ = 0;
+};
+
 // Renders the whole frame of every worker's prepared scene into `img` (all
 // workers must have been prepared with the same scene and size). Returns one
 // share per worker, in order. Exceptions from any worker are rethrown.
-std::vector<DeviceShare> render_bands(const std::vector<ClRenderer*>& workers, Image& img, const TilePolicy& policy);
-
-// Prints one line per device: bands, rows (share of the frame), kernel and
-// busy time, longest launch.
-void print_shares(const std::vector<DeviceShare>& shares, std::FILE* to = stdout);
+std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img,
+                                      const TilePolicy& policy);
 
 // The effective launch limit of `policy` for a device of this type string.
 double launch_limit_ms(const TilePolicy& policy, const std::string& device_type);

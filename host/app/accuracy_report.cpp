@@ -1,0 +1,173 @@
+// accuracy_report.cpp - accuracy rows as table, Markdown, JSON, CSV and plot.
+#include "app/accuracy_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/compare_report.hpp"
+#include "image/plot.hpp"
+#include "util/csv.hpp"
+#include "util/json_text.hpp"
+#include "util/output_file.hpp"
+#include "util/stats.hpp"
+
+namespace clrt {
+
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string base_name(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
+
+struct Cells {
+  std::vector<std::string> head{"scene",       "variant",         "kernel ms (median)", "off by >1",
+                                "% off by >1", "max abs (8-bit)", "RMSE (8-bit)",       "PSNR (dB)",
+                                "NaN/Inf",     "hit flips",       "shadow flips"};
+  std::vector<std::vector<std::string>> body;
+};
+
+Cells cells(const std::vector<AccuracyRow>& rows) {
+  Cells c;
+  for (const auto& r : rows) {
+    if (!r.supported) {
+      c.body.push_back({base_name(r.scene), r.variant, "unsupported", "-", "-", "-", "-", "-", "-", "-", "-"});
+      continue;
+    }
+    const Comparison& e = r.error;
+    // "h": timed by the host clock, the device's profiling events were implausible.
+    const std::string ms = fmt("%.2f", r.median_ms) + (r.host_timed_launches ? " h" : "");
+    c.body.push_back({base_name(r.scene), r.variant, ms, std::to_string(e.off_by_gt1),
+                      fmt("%.4f", e.percent_off_by_gt1()), std::to_string(e.max_abs_8bit), fmt("%.4f", e.rmse_8bit),
+                      format_psnr(e.psnr_8bit), std::to_string(e.nan_inf), std::to_string(e.hit_flips),
+                      std::to_string(e.shadow_flips)});
+  }
+  return c;
+}
+
+}  // namespace
+
+std::string accuracy_table(const std::vector<AccuracyRow>& rows) {
+  Cells c = cells(rows);
+  std::vector<size_t> w(c.head.size());
+  for (size_t k = 0; k < w.size(); ++k) {
+    w[k] = c.head[k].size();
+    for (const auto& r : c.body) w[k] = std::max(w[k], r[k].size());
+  }
+  std::ostringstream os;
+  auto line = [&](const std::vector<std::string>& r) {
+    for (size_t k = 0; k < r.size(); ++k) {
+      std::string pad(w[k] - r[k].size(), ' ');
+      os << (k < 2 ? r[k] + pad : pad + r[k]) << (k + 1 < r.size() ? "  " : "\n");
+    }
+  };
+  line(c.head);
+  for (const auto& r : c.body) line(r);
+  for (const auto& r : rows)
+    if (!r.supported) os << base_name(r.scene) << " " << r.variant << ": " << r.note << "\n";
+  for (const auto& r : rows)
+    if (r.host_timed_launches) {
+      os << "h: timed by the host wall clock (the device's profiling events were implausible)\n";
+      break;
+    }
+  return os.str();
+}
+
+std::string accuracy_markdown(const std::vector<AccuracyRow>& rows) {
+  Cells c = cells(rows);
+  std::ostringstream os;
+  os << "|";
+  for (auto& h : c.head) os << " " << h << " |";
+  os << "\n|";
+  for (size_t k = 0; k < c.head.size(); ++k) os << (k < 2 ? ":---|" : "---:|");
+  os << "\n";
+  for (const auto& r : c.body) {
+    os << "|";
+    for (auto& v : r) os << " " << v << " |";
+    os << "\n";
+  }
+  return os.str();
+}
+
+std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySettings& s, const std::string& device) {
+  nlohmann::json out = {{"device", device}, {"width", s.width}, {"height", s.height}, {"repeat", s.repeat}};
+  nlohmann::json arr = nlohmann::json::array();
+  for (const auto& r : rows) {
+    nlohmann::json j = {{"scene", r.scene}, {"variant", r.variant}, {"depth", r.depth}, {"supported", r.supported}};
+    if (!r.supported) {
+      j["note"] = r.note;
+    } else {
+      j.update({{"kernel_ms_median", r.median_ms},
+                {"kernel_ms", r.kernel_ms},
+                {"kernel", stats_json(summarize(r.kernel_ms))},
+                {"kernel_time_source", r.time_source()}});
+      j.update(comparison_json(r.error));
+    }
+    arr.push_back(j);
+  }
+  out["rows"] = arr;
+  return json_text(out);
+}
+
+void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path) {
+  std::ostringstream f;
+  f << "scene,variant,depth,supported,kernel_ms_median,kernel_time_source,pixels,off_by_gt1,percent_off_by_gt1,"
+       "max_abs_8bit,max_abs_float,rmse_8bit,rmse_float,psnr_8bit,psnr_float,nan_inf,hit_flips,shadow_flips\n";
+  for (const auto& r : rows) {
+    const Comparison& e = r.error;
+    f << csv_field(r.scene) << ',' << csv_field(r.variant) << ',' << r.depth << ',' << (r.supported ? 1 : 0) << ',';
+    if (!r.supported) {
+      f << ",,,,,,,,,,,,,\n";
+      continue;
+    }
+    f << r.median_ms << ',' << r.time_source() << ',' << e.pixels << ',' << e.off_by_gt1 << ','
+      << e.percent_off_by_gt1() << ',' << e.max_abs_8bit << ',' << e.max_abs_float << ',' << e.rmse_8bit << ','
+      << e.rmse_float << ',' << (std::isinf(e.psnr_8bit) ? "inf" : std::to_string(e.psnr_8bit)) << ','
+      << (std::isinf(e.psnr_float) ? "inf" : std::to_string(e.psnr_float)) << ',' << e.nan_inf << ',' << e.hit_flips
+      << ',' << e.shadow_flips << '\n';
+  }
+  write_text_atomic(path, f.str(), "CSV");
+}
+
+void write_accuracy_plot(const std::vector<AccuracyRow>& rows, const std::string& path, const std::string& title) {
+  // Log scale: an exact variant (RMSE 0) is drawn at a floor one decade under
+  // the smallest non-zero RMSE and labelled "(0)".
+  double min_pos = 1;
+  for (const auto& r : rows)
+    if (r.supported && r.error.rmse_8bit > 0) min_pos = std::min(min_pos, r.error.rmse_8bit);
+  const double floor = min_pos / 10;
+  bool many_scenes = false;
+  for (const auto& r : rows) many_scenes |= r.scene != rows.front().scene;
+  std::vector<Series> series;
+  std::map<std::string, size_t> index;
+  for (const auto& r : rows) {
+    if (!r.supported) continue;
+    if (!index.count(r.variant)) {
+      index[r.variant] = series.size();
+      series.emplace_back(r.variant, std::vector<double>{}, std::vector<double>{});
+    }
+    Series& s = series[index[r.variant]];
+    s.x.push_back(r.median_ms);
+    const bool exact = r.error.rmse_8bit <= 0;
+    s.y.push_back(exact ? floor : r.error.rmse_8bit);
+    std::string label = r.variant + (many_scenes ? " " + std::filesystem::path(r.scene).stem().string() : "");
+    if (exact) label += " (0)";
+    s.labels.push_back(label);
+  }
+  PlotOptions o;
+  o.log_y = true;
+  write_plot(path, title, "kernel time, median (ms)", "RMSE vs double reference, 8-bit levels (0 at the bottom)",
+             series, o);
+}
+
+}  // namespace clrt

@@ -1,0 +1,128 @@
+// bench_report.cpp - a BenchResult as text and JSON.
+#include "app/bench_report.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "app/frame_report.hpp"
+#include "cl/launch_timing.hpp"
+#include "util/stats.hpp"
+
+namespace clrt {
+
+nlohmann::json bench_json(const BenchResult& r) {
+  const char* pocl_cache = std::getenv("POCL_KERNEL_CACHE");
+  nlohmann::json peaks = nlohmann::json::array();
+  for (const auto& p : r.peaks) {
+    nlohmann::json j = {{"measured", p.measured}};
+    if (p.measured)
+      j.update({{"gflops", p.gflops},
+                {"launch_ms", stats_json(p.launch_ms)},
+                {"time_source", p.from_events ? "events" : "host"}});
+    else
+      j["note"] = p.note;
+    peaks.push_back(j);
+  }
+  // Flat *_ms / *_median keys are the medians of the matching Stats objects.
+  return {{"device", r.device},
+          {"build_options", r.options},
+          {"width", r.width},
+          {"height", r.height},
+          {"depth", r.depth},
+          {"repeat", r.repeat},
+          {"build_cold", stats_json(r.build_cold)},
+          {"build_cold_ms", r.build_cold.median},
+          {"build_warm", stats_json(r.build_warm)},
+          {"build_warm_ms", r.build_warm.median},
+          {"build_warm_cached", r.build_warm_cached},
+          {"pocl_kernel_cache", pocl_cache ? pocl_cache : "default"},
+          {"upload", stats_json(r.upload)},
+          {"upload_ms", r.upload.median},
+          {"first_launch_ms", r.first_launch_ms},
+          {"kernel_ms", r.kernel_ms},
+          {"kernel", stats_json(r.kernel)},
+          {"kernel_ms_median", r.kernel.median},
+          {"kernel_ms_min", r.kernel.min},
+          {"kernel_ms_max", r.kernel.max},
+          {"kernel_time_source", r.kernel_time_source()},
+          {"launches", r.launches},
+          {"host_timed_launches", r.host_timed_launches},
+          {"frame", stats_json(r.frame)},
+          {"frame_ms_median", r.frame.median},
+          {"devices", shares_json(r.shares)},
+          {"download", stats_json(r.download)},
+          {"download_ms", r.download.median},
+          {"end_to_end_ms", r.end_to_end_ms},
+          {"rays_primary", r.rays.primary},
+          {"rays_shadow", r.rays.shadow},
+          {"rays_reflection", r.rays.reflection},
+          {"rays_total", r.rays.total()},
+          {"sphere_tests", r.rays.sphere_tests},
+          {"mrays_per_s", r.mrays_per_s},
+          {"ns_per_sphere_test", r.ns_per_sphere_test},
+          {"flop_per_sphere_test", kFlopPerSphereTest},
+          {"gflops", r.gflops},
+          {"peak_gflops", r.peak_gflops > 0 ? nlohmann::json(r.peak_gflops) : nlohmann::json()},
+          {"peaks", peaks},
+          {"reference", stats_json(r.reference)},
+          {"reference_ms", r.reference.median},
+          {"speedup_vs_reference", r.speedup_vs_reference},
+          {"omp", stats_json(r.omp)},
+          {"omp_ms_median", r.omp.median},
+          {"omp_threads", r.omp_threads},
+          {"speedup_vs_omp", stats_json(r.speedup_vs_omp)},
+          {"opencl_speedup_vs_omp", r.speedup_vs_omp.median},
+          {"kernel_speedup_vs_omp", stats_json(r.kernel_speedup_vs_omp)}};
+}
+
+void print_bench(const BenchResult& r) {
+  const std::string source = time_source_note(r.host_timed_launches, r.launches);
+  std::printf("device         %s\n", r.device.c_str());
+  std::printf("image          %dx%d, depth %d, %d timed rounds after a warm-up\n", r.width, r.height, r.depth,
+              r.repeat);
+  std::printf("options        %s\n", r.options.c_str());
+  std::printf("build cold     %s (no program cache)\n", format_stats(r.build_cold, "ms", 1).c_str());
+  std::printf("build warm     %s%s\n", format_stats(r.build_warm, "ms", 1).c_str(),
+              r.build_warm_cached ? " (cache hit)" : " (cache miss)");
+  std::printf("upload         %s\n", format_stats(r.upload, "ms", 3).c_str());
+  std::printf("frame          %s (warm: launches + download into host memory)\n", format_stats(r.frame).c_str());
+  std::printf("kernel         %s%s\n", format_stats(r.kernel).c_str(), source.c_str());
+  std::printf("download       %s\n", format_stats(r.download).c_str());
+  if (r.shares.size() > 1) {
+    std::printf("tiles          share of the last timed frame per device:\n");
+    print_shares(r.shares);
+  }
+  std::printf("end to end     %.1f ms (N=1: new renderer, build + upload + first frame; its kernel %.2f ms)\n",
+              r.end_to_end_ms, r.first_launch_ms);
+  std::printf("rays           %llu total: %llu primary, %llu shadow, %llu reflection; %llu ray-sphere tests\n",
+              (unsigned long long)r.rays.total(), (unsigned long long)r.rays.primary, (unsigned long long)r.rays.shadow,
+              (unsigned long long)r.rays.reflection, (unsigned long long)r.rays.sphere_tests);
+  std::printf("throughput     %.1f Mrays/s, %.3f ns per ray-sphere test (median kernel time%s)\n", r.mrays_per_s,
+              r.ns_per_sphere_test, r.host_timed_launches ? ", host clock" : "");
+  if (r.peak_gflops > 0)
+    std::printf("GFLOP/s        %.1f (%.0f FLOP per ray-sphere test) of %.0f measured peak (%.1f%%)\n", r.gflops,
+                kFlopPerSphereTest, r.peak_gflops, 100 * r.gflops / r.peak_gflops);
+  else
+    std::printf("GFLOP/s        %.1f (%.0f FLOP per ray-sphere test); device peak unknown%s\n", r.gflops,
+                kFlopPerSphereTest, r.peaks.empty() ? " (not measured)" : "");
+  for (size_t i = 0; i < r.peaks.size(); ++i) {
+    const auto& p = r.peaks[i];
+    if (p.measured)
+      std::printf("  peak %zu       %.1f GFLOP/s multiply-add kernel, best of %d launches (%s)\n", i, p.gflops,
+                  p.launch_ms.n, p.from_events ? "profiling events" : "host clock");
+    else
+      std::printf("  peak %zu       unknown: %s\n", i, p.note.c_str());
+  }
+  if (r.reference.n > 0)
+    std::printf("reference      %s (scalar double, 1 thread): speedup %.2fx (reference / clrt frame)\n",
+                format_stats(r.reference, "ms", 1).c_str(), r.speedup_vs_reference);
+  if (r.omp.n > 0) {
+    std::printf("OpenMP float   %s (%d threads, -O3 -march=native)\n", format_stats(r.omp).c_str(), r.omp_threads);
+    std::printf("speedup        %s (OpenMP frame / clrt frame, per round; > 1: clrt is faster)\n",
+                format_stats(r.speedup_vs_omp, "x").c_str());
+    std::printf("  kernel only  %s (OpenMP frame / clrt kernel time%s; not like for like)\n",
+                format_stats(r.kernel_speedup_vs_omp, "x").c_str(), r.host_timed_launches ? ", host clock" : "");
+  }
+}
+
+}  // namespace clrt

@@ -1,0 +1,122 @@
+// options.cpp - the option groups: their flags, checks and conversions.
+#include "app/options.hpp"
+
+#include "clrt_layout.h"
+#include "render/precision.hpp"
+#include "util/error.hpp"
+
+namespace clrt {
+
+void ImageOptions::add(CLI::App* cmd, bool with_depth) {
+  cmd->add_option("--width", width, "Image width in pixels (default " + std::to_string(width) + ")");
+  cmd->add_option("--height", height, "Image height in pixels (default " + std::to_string(height) + ")");
+  if (with_depth)
+    cmd->add_option("--depth", depth, "Recursion depth (default: the scene's recursion_depth)")
+        ->check(CLI::Range(0, CLRT_MAX_DEPTH));
+}
+
+void ImageOptions::validate() const {
+  if (width <= 0 || height <= 0)
+    throw UserError("--width/--height must be > 0 (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
+  if (width > kMaxImageEdge || height > kMaxImageEdge || (long long)width * height > kMaxImagePixels)
+    throw UserError("image " + std::to_string(width) + "x" + std::to_string(height) + " is too large (at most " +
+                    std::to_string(kMaxImageEdge) + " per edge and " + std::to_string(kMaxImagePixels) + " pixels)");
+  if (depth != kSceneDepth && (depth < 0 || depth > CLRT_MAX_DEPTH))
+    throw UserError("--depth must be in [0, " + std::to_string(CLRT_MAX_DEPTH) + "] (got " + std::to_string(depth) +
+                    ")");
+}
+
+void DeviceOptions::add(CLI::App* cmd, bool several) {
+  cmd->add_option("--device", device,
+                  several ? "Device index, list (0,1), 'all', or name/type substring (cpu, gpu, pthread)"
+                          : "Device index or name/type substring (default: first GPU, else first)");
+}
+
+void KernelOptions::add(CLI::App* cmd, bool with_variant, bool with_specialize) {
+  if (with_variant) {
+    cmd->add_option("--precision", precision, "naive | stable | robust (default) | fast | fp64");
+    cmd->add_option("--lanes", lanes,
+                    "Pixels per work-item (SIMD lanes): 1, 4, 8, 16 (default: 16 on AVX-512 CPUs, else 8, for "
+                    "specialized float builds on CPUs; 1 on GPUs, generic and fp64)");
+  }
+  if (with_specialize)
+    cmd->add_flag("--no-specialize", no_specialize, "Build the generic kernel instead of a scene-specialized one");
+  cmd->add_flag("--no-ftz", no_ftz, "Do not build with -cl-denorms-are-zero");
+  cmd->add_flag("--no-cache", no_cache, "Do not use the program binary cache (build from source, store nothing)");
+  cmd->add_flag("--verbose", verbose, "Log build options and program cache use on stderr");
+  cmd->add_option("--kernel-dir", kernel_dir, "Read kernels from this directory instead of the embedded copies");
+  cmd->add_option("--cl-options", cl_options,
+                  "Extra OpenCL build options appended to the generated ones (development)");
+}
+
+KernelConfig KernelOptions::config() const {
+  KernelConfig c;
+  c.precision = parse_precision(precision);
+  c.specialize = !no_specialize;
+  c.denorms_zero = !no_ftz;
+  c.use_cache = !no_cache;
+  c.lanes = lanes;
+  c.verbose = verbose;
+  c.kernel_dir = kernel_dir;
+  c.extra_options = cl_options;
+  (void)kernel_lanes(c);  // UserError on a lane count no kernel has
+  return c;
+}
+
+void LaunchOptions::add(CLI::App* cmd) {
+  cmd->add_option("--local", local_size,
+                  "Local work size WxH in work-items (default: the kernel's preferred multiple x 1)");
+  cmd->add_option("--max-launch-ms", max_launch_ms,
+                  "Split the frame so no kernel launch exceeds this many ms (default: 500 on GPUs, none on CPUs; 0 = "
+                  "none)");
+  cmd->add_option("--band-rows", band_rows,
+                  "Fixed tile height in rows (tiles are full-width bands; default: adaptive)");
+}
+
+void LaunchOptions::validate() const {
+  if (band_rows < 0) throw UserError("--band-rows must be >= 0 (got " + std::to_string(band_rows) + ")");
+  if (!(max_launch_ms >= 0) && max_launch_ms != -1) throw UserError("--max-launch-ms must be >= 0");
+  (void)local();
+}
+
+LocalSize LaunchOptions::local() const { return parse_local_size(local_size); }
+
+LocalSize parse_local_size(const std::string& s) {
+  LocalSize size;
+  if (s.empty()) return size;
+  const auto x = s.find('x');
+  try {
+    if (x == std::string::npos) throw std::invalid_argument("no x");
+    size_t used1 = 0, used2 = 0;
+    size.x = std::stoi(s.substr(0, x), &used1);
+    size.y = std::stoi(s.substr(x + 1), &used2);
+    if (used1 != x || used2 != s.size() - x - 1 || size.x <= 0 || size.y <= 0) throw std::invalid_argument("bad");
+  } catch (const std::exception&) {
+    throw UserError("--local: expected WxH with positive integers (got \"" + s + "\")");
+  }
+  return size;
+}
+
+void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help) {
+  cmd->add_option("--repeat", repeat, help + " (default " + std::to_string(repeat) + ")")
+      ->check(CLI::Range(1, kMaxRepeat));
+}
+
+void RenderOptions::add(CLI::App* cmd, bool with_engine) {
+  cmd->add_option("scene", scene_path, "Scene file (JSON)")->required();
+  image.add(cmd);
+  if (with_engine) cmd->add_option("--engine", engine, "opencl (default) or reference");
+  device.add(cmd, /*several=*/true);
+  kernel.add(cmd, /*with_variant=*/true);
+  launch.add(cmd);
+}
+
+void RenderOptions::validate() const {
+  image.validate();
+  if (engine != "opencl" && engine != "reference")
+    throw UserError("unknown engine \"" + engine + "\" (expected opencl or reference)");
+  launch.validate();
+  (void)kernel.config();
+}
+
+}  // namespace clrt

@@ -1,0 +1,102 @@
+// options.hpp - the command line's option groups, composed per subcommand (in
+// the style of the Khronos OpenCL-SDK's Options.hpp): each group adds its
+// options to a CLI11 command, checks them, and turns them into the core's
+// settings (KernelConfig, RenderSettings). Only app/ sees CLI11.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "cl/device.hpp"
+#include "render/renderer.hpp"
+#include "scene/scene.hpp"
+
+namespace clrt {
+
+constexpr int kMaxImageEdge = 16384;
+constexpr long long kMaxImagePixels = 64LL * 1024 * 1024;
+
+// --width, --height and (optionally) --depth.
+struct ImageOptions {
+  int width = 600, height = 600;
+  // --depth accepts only [0, CLRT_MAX_DEPTH]; without it the scene's
+  // recursion_depth is used (kSceneDepth is never a user value).
+  static constexpr int kSceneDepth = -1;
+  int depth = kSceneDepth;
+
+  void add(CLI::App* cmd, bool with_depth = true);
+  void validate() const;
+  int effective_depth(const Scene& s) const { return depth == kSceneDepth ? s.recursion_depth : depth; }
+};
+
+// --device: one device, or (several = true) a list / 'all'.
+struct DeviceOptions {
+  std::string device;  // "" = the default device
+
+  void add(CLI::App* cmd, bool several);
+  std::vector<DeviceInfo> devices() const { return select_devices(device); }
+  DeviceInfo one() const { return select_device(device); }
+};
+
+// How the kernel is built: --precision and --lanes (with_variant),
+// --no-specialize (with_specialize), and --no-ftz, --no-cache, --verbose,
+// --kernel-dir, --cl-options.
+struct KernelOptions {
+  std::string precision = "robust";
+  bool no_specialize = false;
+  bool no_ftz = false;
+  int lanes = 0;          // pixels per work-item, 0 = default
+  bool no_cache = false;  // bypass the program binary cache
+  bool verbose = false;   // log build options / cache use on stderr
+  std::string kernel_dir;
+  std::string cl_options;  // extra build options (development)
+
+  void add(CLI::App* cmd, bool with_variant, bool with_specialize = true);
+  // Validates and returns the kernel configuration (UserError otherwise).
+  KernelConfig config() const;
+};
+
+// How a frame is launched: --local, --band-rows, --max-launch-ms.
+struct LaunchOptions {
+  std::string local_size;      // "WxH" or ""
+  int band_rows = 0;           // fixed band height, 0 = adaptive
+  double max_launch_ms = -1;   // -1 = device default (500 ms GPU, none CPU)
+
+  void add(CLI::App* cmd);
+  void validate() const;
+  TilePolicy tiles() const { return TilePolicy{max_launch_ms, band_rows}; }
+  LocalSize local() const;
+};
+
+// --repeat N: timed runs, in [1, kMaxRepeat].
+constexpr int kMaxRepeat = 1000;
+void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help);
+
+// Everything a render-like subcommand (render, compare, bench, sweep) takes.
+struct RenderOptions {
+  std::string scene_path;
+  std::string engine = "opencl";
+  ImageOptions image;
+  DeviceOptions device;
+  KernelOptions kernel;
+  LaunchOptions launch;
+
+  // Adds SCENE and every group (--engine only with_engine).
+  void add(CLI::App* cmd, bool with_engine);
+  void validate() const;
+  RenderSettings settings() const { return RenderSettings{kernel.config(), launch.tiles(), launch.local()}; }
+};
+
+// Parses "8x8" into {8, 8}; UserError on anything else ("" = default {0, 0}).
+LocalSize parse_local_size(const std::string& s);
+
+// Registration of each subcommand (one file each: cmd_<name>.cpp).
+void add_devices_command(CLI::App& app);
+void add_render_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);
+void add_accuracy_command(CLI::App& app);
+void add_stability_command(CLI::App& app);
+
+}  // namespace clrt

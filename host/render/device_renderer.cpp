@@ -1,0 +1,144 @@
+// device_renderer.cpp - buffers, kernel launches (tiles), profiling, download.
+#include "render/device_renderer.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "cl/kernel_source.hpp"
+#include "cl/program.hpp"
+#include "render/scene_buffers.hpp"
+#include "util/error.hpp"
+#include "util/timer.hpp"
+
+namespace clrt {
+namespace {
+
+template <class T>
+cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::vector<T>& v) {
+  // Zero-sized buffers are invalid in OpenCL: keep at least one element.
+  std::vector<T> data = v.empty() ? std::vector<T>(1) : v;
+  cl::Buffer b(ctx, CL_MEM_READ_ONLY, data.size() * sizeof(T));
+  q.enqueueWriteBuffer(b, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+  return b;
+}
+
+}  // namespace
+
+DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local)
+    : device_(device), config_(std::move(config)), local_(local) {
+  if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);
+  context_ = cl::Context(device_.device);
+  queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
+  source_ = load_kernel_source("trace.cl", config_.kernel_dir);
+}
+
+void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth) {
+  std::string opts = build_options(config_, scene, depth, device_.fp64);
+  if (opts != options_ || !kernel_()) {
+    BuildStats bs;
+    program_ = build_program(context_, device_, source_, opts, &bs, BuildFlags{config_.use_cache, config_.verbose});
+    kernel_ = cl::Kernel(program_, "render");
+    // Default local size: (preferred multiple, 1), within the kernel's limit.
+    size_t pm = kernel_.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device_.device);
+    size_t max_wg = kernel_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_.device);
+    default_local_x_ = int(std::max<size_t>(1, std::min(pm, max_wg)));
+    max_work_group_ = max_wg;
+    options_ = opts;
+    timings_.build_ms = bs.ms;
+    timings_.build_cached = bs.cached;
+  } else {
+    timings_.build_ms = 0;
+    timings_.build_cached = true;
+  }
+  check_local_size();
+  auto t0 = std::chrono::steady_clock::now();
+  SceneData data = pack_scene(scene, config_.precision, width, height, depth);
+  params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
+  spheres_ = upload(context_, queue_, data.spheres);
+  lights_ = upload(context_, queue_, data.lights);
+  timings_.upload_ms = ms_since(t0);
+  width_ = width;
+  height_ = height;
+}
+
+void DeviceRenderer::check_local_size() const {
+  if (local_.x <= 0 && local_.y <= 0) return;
+  const size_t lx = size_t(std::max(1, local_.x)), ly = size_t(std::max(1, local_.y));
+  const auto item_sizes = device_.device.getInfo<CL_DEVICE_MAX_WORK_ITEM_SIZES>();
+  const bool fits = lx <= max_work_group_ && ly <= max_work_group_ && lx * ly <= max_work_group_ &&
+                    (item_sizes.size() < 2 || (lx <= item_sizes[0] && ly <= item_sizes[1]));
+  if (!fits)
+    throw UserError("--local " + std::to_string(lx) + "x" + std::to_string(ly) + ": exceeds what " + device_.name +
+                    " allows for this kernel (at most " + std::to_string(max_work_group_) + " work-items per group" +
+                    (item_sizes.size() >= 2 ? ", " + std::to_string(item_sizes[0]) + "x" + std::to_string(item_sizes[1])
+                                            : std::string()) +
+                    " per dimension)");
+}
+
+void DeviceRenderer::ensure_tile_buffers(size_t pixels) {
+  if (pixels <= tile_capacity_) return;
+  colors_ = cl::Buffer(context_, CL_MEM_WRITE_ONLY, pixels * 3 * sizeof(float));
+  classes_ = cl::Buffer(context_, CL_MEM_WRITE_ONLY, pixels * 2 * sizeof(cl_int));
+  ray_counters_ = cl::Buffer(context_, CL_MEM_WRITE_ONLY, (config_.count_rays ? pixels : 1) * sizeof(clrt_ray_counts));
+  tile_capacity_ = pixels;
+}
+
+LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
+  const size_t n = size_t(w) * h;
+  ensure_tile_buffers(n);
+  kernel_.setArg(0, params_);
+  kernel_.setArg(1, spheres_);
+  kernel_.setArg(2, lights_);
+  kernel_.setArg(3, colors_);
+  kernel_.setArg(4, classes_);
+  kernel_.setArg(5, ray_counters_);
+  kernel_.setArg(6, cl_int(x0));
+  kernel_.setArg(7, cl_int(y0));
+  kernel_.setArg(8, cl_int(w));
+  kernel_.setArg(9, cl_int(h));
+  // Each work-item shades kernel_lanes(config_) adjacent pixels of a row.
+  const size_t lanes = size_t(kernel_lanes(config_)), gw = (size_t(w) + lanes - 1) / lanes;
+  // Always an explicit local size: with NullRange the implementation picks
+  // one from the global size, which changes with every band height, and
+  // PoCL compiles a new work-group function for each (measured: 1.2 s per
+  // 640x480 frame of 5 ms bands instead of 20 ms; docs/performance.md).
+  // (check_local_size() bounded both by the device's limits.)
+  const size_t lx = size_t(local_.x > 0 ? local_.x : default_local_x_), ly = size_t(local_.y > 0 ? local_.y : 1);
+  // Pad the global size to a multiple of the local size, in size_t (no
+  // overflow for any tile and local size the checks let through); the
+  // kernel ignores work-items outside the tile. Every pixel must be covered.
+  const size_t global_x = (gw + lx - 1) / lx * lx, global_y = (size_t(h) + ly - 1) / ly * ly;
+  if (global_x < gw || global_y < size_t(h)) throw std::logic_error("launch does not cover the tile");
+  cl::NDRange global(global_x, global_y), local(lx, ly);
+  const LaunchTime time = run_timed(queue_, kernel_, global, local);
+
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<float> rgb(n * 3);
+  std::vector<cl_int> aux(n * 2);
+  queue_.enqueueReadBuffer(colors_, CL_TRUE, 0, rgb.size() * sizeof(float), rgb.data());
+  queue_.enqueueReadBuffer(classes_, CL_TRUE, 0, aux.size() * sizeof(cl_int), aux.data());
+  if (config_.count_rays) {
+    std::vector<clrt_ray_counts> rc(n);
+    queue_.enqueueReadBuffer(ray_counters_, CL_TRUE, 0, rc.size() * sizeof(clrt_ray_counts), rc.data());
+    for (const auto& c : rc)  // the kernel counts in 32-bit words; they wrap past 2^31 as unsigned
+      counts_ += RayCounts{uint32_t(c.primary), uint32_t(c.shadow), uint32_t(c.reflection), uint32_t(c.sphere_tests)};
+  }
+  for (int ty = 0; ty < h; ++ty) {
+    for (int tx = 0; tx < w; ++tx) {
+      size_t s = size_t(ty) * w + tx;
+      size_t d = size_t(y0 + ty) * dst.width + (x0 + tx);
+      for (int c = 0; c < 3; ++c) dst.rgb[d * 3 + c] = rgb[s * 3 + c];
+      dst.hit[d] = aux[s * 2];
+      dst.shadowed[d] = aux[s * 2 + 1];
+    }
+  }
+  timings_.download_ms += ms_since(t0);
+  return time;
+}
+
+void DeviceRenderer::begin_frame() {
+  counts_ = {};
+  timings_.download_ms = 0;
+}
+
+}  // namespace clrt

@@ -1,0 +1,35 @@
+// kernel_features.cpp - scene analysis for the specialized kernel.
+#include "render/kernel_features.hpp"
+
+#include <tuple>
+
+namespace clrt {
+
+bool KernelFeatures::operator==(const KernelFeatures& other) const {
+  auto fields = [](const KernelFeatures& f) {
+    return std::tie(f.sphere_count, f.light_count, f.light_types, f.has_ambient, f.has_point, f.has_directional,
+                    f.has_specular, f.has_reflective, f.depth, f.unroll_counts);
+  };
+  return fields(*this) == fields(other);
+}
+
+KernelFeatures kernel_features(const Scene& scene, int depth) {
+  KernelFeatures f;
+  f.sphere_count = scene.spheres.size();
+  f.light_count = scene.lights.size();
+  for (const Light& light : scene.lights) {
+    f.light_types.push_back(light.type);
+    f.has_ambient |= light.type == LightType::Ambient;
+    f.has_point |= light.type == LightType::Point;
+    f.has_directional |= light.type == LightType::Directional;
+  }
+  for (const Sphere& sphere : scene.spheres) {
+    f.has_specular |= sphere.specular != -1;
+    f.has_reflective |= sphere.reflective > 0;
+  }
+  f.depth = f.has_reflective ? depth : 0;
+  f.unroll_counts = counts_unrolled(f.sphere_count, f.light_count);
+  return f;
+}
+
+}  // namespace clrt

@@ -1,0 +1,83 @@
+// renderer.cpp - one frame over one or more devices.
+#include "render/renderer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <stdexcept>
+#include <thread>
+
+#include "util/timer.hpp"
+
+namespace clrt {
+
+Renderer::Renderer(const std::vector<DeviceInfo>& devices, const RenderSettings& settings) : settings_(settings) {
+  if (devices.empty()) throw std::logic_error("Renderer without devices");
+  for (const auto& d : devices) devices_.push_back(std::make_unique<DeviceRenderer>(d, settings.kernel, settings.local));
+}
+
+std::string Renderer::device_names() const {
+  std::string names;
+  for (size_t i = 0; i < devices_.size(); ++i) names += (i ? " + " : "") + devices_[i]->device().name;
+  return names;
+}
+
+const std::string& Renderer::options() const { return devices_.front()->options(); }
+
+void Renderer::prepare(const Scene& scene, int width, int height, int depth) {
+  // One host thread per device beyond the first: builds take seconds.
+  std::vector<std::exception_ptr> errors(devices_.size());
+  std::vector<std::thread> threads;
+  for (size_t i = 1; i < devices_.size(); ++i)
+    threads.emplace_back([&, i] {
+      try {
+        devices_[i]->prepare(scene, width, height, depth);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    });
+  try {
+    devices_[0]->prepare(scene, width, height, depth);
+  } catch (...) {
+    errors[0] = std::current_exception();
+  }
+  for (auto& t : threads) t.join();
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+
+  stats_ = FrameStats{};
+  stats_.build_cached = true;
+  for (const auto& d : devices_) {
+    stats_.build_ms = std::max(stats_.build_ms, d->timings().build_ms);
+    stats_.upload_ms = std::max(stats_.upload_ms, d->timings().upload_ms);
+    stats_.build_cached = stats_.build_cached && d->timings().build_cached;
+  }
+}
+
+Image Renderer::render() {
+  const auto t0 = Clock::now();
+  std::vector<DeviceRenderer*> workers;
+  for (auto& d : devices_) {
+    if (d->width() == 0) throw std::logic_error("Renderer::render before prepare");
+    d->begin_frame();
+    workers.push_back(d.get());
+  }
+  // Every device was prepared with the same scene and size.
+  Image img(devices_.front()->width(), devices_.front()->height());
+  stats_.shares = render_bands(workers, img, settings_.tiles);
+  stats_.wall_ms = ms_since(t0);
+  stats_.kernel_ms = stats_.download_ms = 0;
+  stats_.launches = stats_.host_timed_launches = 0;
+  stats_.rays = {};
+  for (size_t i = 0; i < devices_.size(); ++i) {
+    const DeviceShare& share = stats_.shares[i];
+    stats_.kernel_ms += share.kernel_ms;
+    stats_.launches += share.tiles;
+    stats_.host_timed_launches += share.host_timed_launches;
+    stats_.download_ms += devices_[i]->timings().download_ms;
+    stats_.rays += devices_[i]->ray_counts();
+  }
+  return img;
+}
+
+}  // namespace clrt

@@ -1,0 +1,64 @@
+// renderer.hpp - the one way to render a frame with OpenCL, on one device or
+// several at once: one DeviceRenderer (context, queue, specialized program,
+// scene buffers) per device, bands handed out dynamically by the band
+// scheduler so faster devices take more of the frame.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cl/device.hpp"
+#include "image/image.hpp"
+#include "render/band_scheduler.hpp"
+#include "render/build_options.hpp"
+#include "render/device_renderer.hpp"
+#include "scene/scene.hpp"
+
+namespace clrt {
+
+// How to render: the kernel build, the bands, the work-group size. Filled by
+// the command line (app/) or by the evaluations (eval/).
+struct RenderSettings {
+  KernelConfig kernel;
+  TilePolicy tiles;
+  LocalSize local;
+};
+
+// The last prepare() and render(), over every device.
+struct FrameStats {
+  double build_ms = 0;        // longest program build or cache load (they run in parallel)
+  bool build_cached = false;  // every device loaded its program from the cache
+  double upload_ms = 0;       // longest scene upload
+  double kernel_ms = 0;       // kernel time summed over launches and devices (launch_timing.hpp)
+  double download_ms = 0;     // tiles back into host memory, summed over devices
+  double wall_ms = 0;         // render(): every launch and download
+  int launches = 0;
+  int host_timed_launches = 0;      // of those, timed by the host clock (launch_timing.hpp)
+  RayCounts rays;                   // with KernelConfig::count_rays
+  std::vector<DeviceShare> shares;  // one per device, in order
+};
+
+class Renderer {
+ public:
+  // UserError when the settings do not suit a device (lanes, fp64, local size).
+  Renderer(const std::vector<DeviceInfo>& devices, const RenderSettings& settings);
+
+  // Builds every device's program (in parallel) and uploads the scene.
+  void prepare(const Scene& scene, int width, int height, int depth);
+  // Renders the prepared scene: the whole frame, shared by every device.
+  Image render();
+
+  const FrameStats& stats() const { return stats_; }
+  // "name" or "name + name + ...".
+  std::string device_names() const;
+  // The build options of the first device's program (logged, reported).
+  const std::string& options() const;
+  size_t device_count() const { return devices_.size(); }
+
+ private:
+  std::vector<std::unique_ptr<DeviceRenderer>> devices_;
+  RenderSettings settings_;
+  FrameStats stats_;
+};
+
+}  // namespace clrt

@@ -1,0 +1,92 @@
+/* clrt_config.h - the kernel's build-time configuration: every -D option the
+ * host passes (all made in one place, host/render/build_options.cpp, from the
+ * config and the scene's KernelFeatures), their defaults, and the switches
+ * derived from them.
+ *
+ *   CLRT_PRECISION       CLRT_PRECISION_* of clrt_layout.h (default robust)
+ *   CLRT_SPECIALIZED     scene-specific build: the options below are constants
+ *   CLRT_DEPTH           specialized: the recursion depth
+ *   CLRT_N_SPHERES, CLRT_N_LIGHTS  specialized, small scenes only: constant
+ *                        loop bounds, loops unrolled (the host leaves them out
+ *                        past a bound, kMaxUnrolled* in
+ *                        host/render/kernel_features.hpp)
+ *   CLRT_LIGHT_TYPES     with the counts: each light's CLRT_LIGHT_*, "0,1,2"
+ *   CLRT_HAS_AMBIENT, CLRT_HAS_POINT, CLRT_HAS_DIRECTIONAL,
+ *   CLRT_HAS_SPECULAR, CLRT_HAS_REFLECTIVE  (0/1; generic build: all 1)
+ *   CLRT_COUNT_RAYS      write per-pixel ray counters
+ *   CLRT_LANES           pixels per work-item: 1 (when absent), 4, 8 or 16;
+ *                        the host picks it (default_lanes(), build_options.hpp)
+ *
+ * Measurement knobs, never set by the host (--cl-options, see
+ * docs/performance.md): CLRT_SHADOW_ALL_SPHERES, CLRT_LIB_POW. */
+#ifndef CLRT_CONFIG_H
+#define CLRT_CONFIG_H
+
+#include "clrt_layout.h"
+
+#ifndef CLRT_PRECISION
+#define CLRT_PRECISION CLRT_PRECISION_ROBUST
+#endif
+
+/* Robust and fast modes know which sphere a secondary ray starts on: for it
+ * |f|^2 - r^2 is exactly 0, so its roots are exactly 0 and 2b/a. Computing
+ * them from a rounded hit point instead is what lets float32 rays hit their
+ * own sphere (shadow acne on the radius-5000 floor). */
+#if CLRT_PRECISION == CLRT_PRECISION_ROBUST || CLRT_PRECISION == CLRT_PRECISION_FAST
+#define CLRT_SELF_ROOTS 1
+#else
+#define CLRT_SELF_ROOTS 0
+#endif
+
+/* Scene counts and recursion depth: constants in a specialized build (counts
+ * only for small scenes), else read from the clrt_params at run time. */
+#if defined(CLRT_SPECIALIZED) && defined(CLRT_N_SPHERES)
+#define CLRT_SPHERE_COUNT(params) CLRT_N_SPHERES
+#define CLRT_LIGHT_COUNT(params) CLRT_N_LIGHTS
+#else
+#define CLRT_SPHERE_COUNT(params) ((params)->n_spheres)
+#define CLRT_LIGHT_COUNT(params) ((params)->n_lights)
+#endif
+#ifdef CLRT_SPECIALIZED
+#define CLRT_RECURSION_DEPTH(params) CLRT_DEPTH
+#define CLRT_STACK_FRAMES (CLRT_DEPTH + 1)
+#else
+#define CLRT_RECURSION_DEPTH(params) (min((params)->depth, CLRT_MAX_DEPTH))
+#define CLRT_STACK_FRAMES (CLRT_MAX_DEPTH + 1)
+#endif
+
+/* The generic build has every feature; a specialized one gets each from the
+ * host (0 or 1). */
+#ifndef CLRT_SPECIALIZED
+#ifndef CLRT_HAS_AMBIENT
+#define CLRT_HAS_AMBIENT 1
+#endif
+#ifndef CLRT_HAS_POINT
+#define CLRT_HAS_POINT 1
+#endif
+#ifndef CLRT_HAS_DIRECTIONAL
+#define CLRT_HAS_DIRECTIONAL 1
+#endif
+#ifndef CLRT_HAS_SPECULAR
+#define CLRT_HAS_SPECULAR 1
+#endif
+#ifndef CLRT_HAS_REFLECTIVE
+#define CLRT_HAS_REFLECTIVE 1
+#endif
+#endif
+
+#ifndef CLRT_LANES
+#define CLRT_LANES 1
+#endif
+
+/* Helpers are forced inline (PoCL otherwise keeps intersect() out of line,
+ * a call per ray-sphere test), and specialized builds of small scenes unroll
+ * the loops whose bounds are constants there. */
+#define CLRT_INLINE inline __attribute__((always_inline))
+#if defined(CLRT_SPECIALIZED) && defined(CLRT_N_SPHERES)
+#define CLRT_UNROLL _Pragma("unroll")
+#else
+#define CLRT_UNROLL
+#endif
+
+#endif /* CLRT_CONFIG_H */

@@ -1,0 +1,95 @@
+/* clrt_lanes.h - the scalar type of a precision variant (`real`) and the SIMD
+ * lane types built from it.
+ *
+ * A work-item shades CLRT_LANES horizontally adjacent pixels, one per lane of
+ * `lreal`: float16/float8/float4 in specialized float builds (the host picks
+ * 16 on AVX-512 CPUs, 8 on other CPUs, 1 on GPUs: default_lanes() in
+ * host/render/build_options.hpp), a plain scalar (1 lane) in generic and fp64
+ * builds. Every lane runs exactly the per-pixel algorithm, with branches
+ * turned into per-lane masks; loops stop when no lane needs them any more.
+ * PoCL does not vectorize the kernel across work-items by itself (see
+ * docs/performance.md), so the lanes are written out; the scalar build runs
+ * the same code with 1-lane masks. */
+#ifndef CLRT_LANES_H
+#define CLRT_LANES_H
+
+#include "clrt_config.h"
+
+/* ---- the scalar of the precision variant ------------------------------ */
+#if CLRT_PRECISION == CLRT_PRECISION_FP64
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+typedef double real;
+#define REAL_INFINITY ((double)INFINITY)
+#else
+typedef float real;
+#define REAL_INFINITY INFINITY
+#endif
+
+/* ---- lane types -------------------------------------------------------- */
+/* lreal holds one value per pixel of the work-item, lint the matching
+ * integers and masks. Masks are what comparisons return: 0/1 for scalars,
+ * 0/-1 for vectors, so they are only ever combined with & | ! and other
+ * masks of the same kind, and consumed by ?: or ANY/ALL. */
+#if CLRT_LANES == 1
+typedef real lreal;
+typedef int lint;
+#define ANY(mask) (mask)
+#define ALL(mask) (mask)
+#define TO_LREAL(i) ((real)(i))
+#define LANE_IOTA 0
+#elif CLRT_LANES == 4
+typedef float4 lreal;
+typedef int4 lint;
+#define TO_LREAL(i) convert_float4(i)
+#define LANE_IOTA ((int4)(0, 1, 2, 3))
+#elif CLRT_LANES == 8
+typedef float8 lreal;
+typedef int8 lint;
+#define TO_LREAL(i) convert_float8(i)
+#define LANE_IOTA ((int8)(0, 1, 2, 3, 4, 5, 6, 7))
+#elif CLRT_LANES == 16
+typedef float16 lreal;
+typedef int16 lint;
+#define TO_LREAL(i) convert_float16(i)
+#define LANE_IOTA ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+#else
+#error "CLRT_LANES must be 1, 4, 8 or 16"
+#endif
+#if CLRT_LANES > 1
+#if CLRT_PRECISION == CLRT_PRECISION_FP64
+#error "fp64 builds use CLRT_LANES=1"
+#endif
+#define ANY(mask) any(mask)
+#define ALL(mask) all(mask)
+#endif
+#define MASK_TRUE ((lint)(CLRT_LANES == 1 ? 1 : -1))
+
+/* Bit casts and the truncating conversion, per lane. */
+#if CLRT_LANES == 1
+#define AS_LINT(x) as_int(x)
+#define AS_LREAL(i) as_float(i)
+#define TO_LINT(x) ((int)(x))
+#else
+#define CONCAT_TOKENS(a, b) a##b
+#define CONCAT_EXPANDED(a, b) CONCAT_TOKENS(a, b) /* expands CLRT_LANES first */
+#define AS_LINT(x) CONCAT_EXPANDED(as_int, CLRT_LANES)(x)
+#define AS_LREAL(i) CONCAT_EXPANDED(as_float, CLRT_LANES)(i)
+#define TO_LINT(x) CONCAT_EXPANDED(convert_int, CLRT_LANES)(x) /* truncates, like (int) */
+/* Stores the lanes of `value` to the array `lanes` (one element per lane). */
+#define STORE_LANES(lanes, value) CONCAT_EXPANDED(vstore, CLRT_LANES)((value), 0, (lanes))
+#endif
+
+/* ---- per-lane ray counters (CLRT_COUNT_RAYS) --------------------------- */
+/* One clrt_ray_counts per lane's pixel. Without CLRT_COUNT_RAYS nothing is
+ * ever added, and the unused counters are compiled away. */
+typedef struct {
+  lint primary, shadow, reflection, sphere_tests;
+} lane_ray_counts;
+#ifdef CLRT_COUNT_RAYS
+/* adds n to `counter` in the lanes of `mask` */
+#define COUNT_IN_LANES(counter, mask, n) ((counter) += (mask) ? (lint)(n) : (lint)0)
+#else
+#define COUNT_IN_LANES(counter, mask, n) ((void)0)
+#endif
+
+#endif /* CLRT_LANES_H */

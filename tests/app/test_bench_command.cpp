@@ -1,0 +1,79 @@
+// test_bench_command.cpp - `clrt bench --json` and `clrt sweep --csv --plot`:
+// the keys, rows and files the commands promise (on the test device).
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_run.hpp"
+#include "test_util.hpp"
+
+TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench][opencl]") {
+  auto r = clrt_test::run_clrt({"bench", clrt_test::source_path("scenes/cgfs-demo.json"), "--width", "40", "--height",
+                                "30", "--depth", "1", "--repeat", "2", "--json"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  auto j = nlohmann::json::parse(r.out);
+  for (const char* k :
+       {"kernel_ms_median", "kernel_ms_min", "kernel_ms_max", "rays_total", "rays_primary", "rays_shadow",
+        "rays_reflection", "mrays_per_s", "reference_ms", "omp_ms_median", "opencl_speedup_vs_omp", "build_cold_ms",
+        "build_warm_ms", "upload_ms", "download_ms", "end_to_end_ms", "gflops", "peak_gflops", "ns_per_sphere_test"})
+    CHECK(j.contains(k));
+  CHECK(j["kernel_ms"].size() == 2);
+  CHECK(j["build_warm_cached"] == true);
+  // Every timed figure comes with N, median, mean, sd, min and max.
+  for (const char* k : {"kernel", "frame", "download", "omp", "speedup_vs_omp", "kernel_speedup_vs_omp", "build_cold",
+                        "build_warm", "upload", "reference"}) {
+    INFO(k);
+    REQUIRE(j.contains(k));
+    for (const char* f : {"n", "median", "mean", "sd", "min", "max"}) CHECK(j[k].contains(f));
+    CHECK(j[k]["min"].get<double>() <= j[k]["median"].get<double>());
+    CHECK(j[k]["median"].get<double>() <= j[k]["max"].get<double>());
+  }
+  CHECK(j["frame"]["n"] == 2);
+  CHECK(j["omp"]["n"] == 2);
+  CHECK(j["build_cold"]["n"] == 2);  // min(--repeat, 3)
+  // The headline ratio is frame against frame: the same work on both sides.
+  CHECK(j["opencl_speedup_vs_omp"] == j["speedup_vs_omp"]["median"]);
+  CHECK(j["kernel"]["median"].get<double>() <= j["frame"]["median"].get<double>());
+  // PoCL's events are plausible; the peak is measured, not assumed.
+  CHECK(j["kernel_time_source"] == "events");
+  REQUIRE(j["peaks"].size() == 1);
+  CHECK(j["peaks"][0]["measured"] == true);
+  CHECK(j["peak_gflops"].get<double>() > 0);
+  // Every pixel shoots one primary ray; the totals add up.
+  CHECK(j["rays_primary"] == 40 * 30);
+  CHECK(j["rays_total"].get<uint64_t>() ==
+        j["rays_primary"].get<uint64_t>() + j["rays_shadow"].get<uint64_t>() + j["rays_reflection"].get<uint64_t>());
+}
+
+TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep][opencl]") {
+  clrt_test::TempDir dir;
+  auto r =
+      clrt_test::run_clrt({"sweep", clrt_test::source_path("scenes/cgfs-demo.json"), "--depths", "0:2", "--width", "32",
+                           "--height", "24", "--repeat", "1", "--csv", dir / "s.csv", "--plot", dir / "s.png"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.find('\r') == std::string::npos);  // no progress bar when stderr is not a terminal
+  std::istringstream csv(clrt_test::slurp(dir / "s.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  REQUIRE(rows.size() == 3);
+  CHECK(header.rfind("device,depth,kernel_ms_median", 0) == 0);
+  // Depth 0 traces no reflection ray: the rays_reflection column is 0.
+  auto column = [&](const std::string& row, const std::string& name) {
+    std::istringstream h(header), v(row);
+    std::string hn, vv;
+    while (std::getline(h, hn, ',') && std::getline(v, vv, ','))
+      if (hn == name) return vv;
+    return std::string("?");
+  };
+  CHECK(column(rows[0], "depth") == "0");
+  CHECK(column(rows[0], "rays_reflection") == "0");
+  CHECK(column(rows[0], "rays_primary") == "768");
+  CHECK(column(rows[2], "depth") == "2");
+  CHECK(std::filesystem::file_size(dir / "s.png") > 0);
+  CHECK(std::filesystem::file_size(dir / "s-rays.png") > 0);
+}

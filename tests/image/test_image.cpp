@@ -1,0 +1,37 @@
+// test_image.cpp - 8-bit quantization (canvas semantics) of image values.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+
+#include "image/image.hpp"
+
+using namespace clrt;
+
+TEST_CASE("8-bit values round to nearest, ties to even, like a canvas", "[image]") {
+  CHECK(to_u8(0.4) == 0);
+  CHECK(to_u8(0.6) == 1);
+  // Exact halves go to the even neighbour, not up: 0.5 -> 0, 1.5 -> 2, 2.5 -> 2.
+  CHECK(to_u8(0.5) == 0);
+  CHECK(to_u8(1.5) == 2);
+  CHECK(to_u8(2.5) == 2);
+  CHECK(to_u8(254.5) == 254);
+  // Just off a tie goes to the nearer value.
+  CHECK(to_u8(std::nextafter(2.5, 3.0)) == 3);
+  CHECK(to_u8(std::nextafter(2.5, 2.0)) == 2);
+}
+
+TEST_CASE("8-bit values clamp to [0, 255]; NaN becomes 0", "[image]") {
+  CHECK(to_u8(-1e30) == 0);
+  CHECK(to_u8(-0.0) == 0);
+  CHECK(to_u8(255.4) == 255);
+  CHECK(to_u8(1e300) == 255);
+  CHECK(to_u8(std::numeric_limits<double>::infinity()) == 255);
+  CHECK(to_u8(-std::numeric_limits<double>::infinity()) == 0);
+  CHECK(to_u8(std::numeric_limits<double>::quiet_NaN()) == 0);
+}
+
+TEST_CASE("an image quantizes channel by channel", "[image]") {
+  Image img(2, 1);
+  img.rgb = {0.5, 1.5, 300, -2, 127.49, 127.51};
+  CHECK(to_u8(img) == std::vector<uint8_t>{0, 2, 255, 0, 127, 128});
+}

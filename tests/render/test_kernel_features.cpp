@@ -1,0 +1,286 @@
+// test_kernel_features.cpp - scene analysis (KernelFeatures), the -D list
+// made from it, the unroll bound and the lane-count rules. Host only: no
+// OpenCL device is needed.
+#include <catch2/catch.hpp>
+#include <string>
+#include <vector>
+
+#include "clrt_layout.h"
+#include "render/build_options.hpp"
+#include "render/kernel_features.hpp"
+#include "render/precision_support.hpp"
+#include "test_util.hpp"
+#include "util/error.hpp"
+
+using namespace clrt;
+using Catch::Matchers::Contains;
+
+namespace {
+
+Sphere sphere(double specular, double reflective) {
+  Sphere s;
+  s.specular = specular;
+  s.reflective = reflective;
+  return s;
+}
+
+Light light(LightType type) {
+  Light l;
+  l.type = type;
+  return l;
+}
+
+bool has(const std::vector<std::string>& options, const std::string& option) {
+  for (const auto& o : options)
+    if (o == option) return true;
+  return false;
+}
+
+bool has_prefix(const std::vector<std::string>& options, const std::string& prefix) {
+  for (const auto& o : options)
+    if (o.compare(0, prefix.size(), prefix) == 0) return true;
+  return false;
+}
+
+DeviceInfo device(const std::string& type, cl_uint native_float_width) {
+  DeviceInfo d;
+  d.type = type;
+  d.native_float_width = native_float_width;
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("features of every shipped scene", "[features]") {
+  for (const auto& path : clrt_test::shipped_scenes()) {
+    INFO(path);
+    const Scene s = load_scene(path);
+    const KernelFeatures f = kernel_features(s, 3);
+    // Every shipped scene is the book's kind: 4 spheres, one light of each
+    // type, everything shiny and reflective.
+    CHECK(f.sphere_count == 4);
+    CHECK(f.light_count == 3);
+    CHECK(f.light_types == std::vector<LightType>{LightType::Ambient, LightType::Point, LightType::Directional});
+    CHECK(f.has_ambient);
+    CHECK(f.has_point);
+    CHECK(f.has_directional);
+    CHECK(f.has_shadows());
+    CHECK(f.has_specular);
+    CHECK(f.has_reflective);
+    CHECK(f.depth == 3);
+    CHECK(f.traces_reflections());
+    CHECK(f.unroll_counts);
+    CHECK(kernel_features(s, 0).depth == 0);
+    CHECK_FALSE(kernel_features(s, 0).traces_reflections());
+  }
+}
+
+TEST_CASE("features follow the scene's lights and materials", "[features]") {
+  Scene s;
+  KernelFeatures empty = kernel_features(s, 5);
+  CHECK(empty.sphere_count == 0);
+  CHECK(empty.light_count == 0);
+  CHECK(empty.light_types.empty());
+  CHECK_FALSE(empty.has_ambient);
+  CHECK_FALSE(empty.has_point);
+  CHECK_FALSE(empty.has_directional);
+  CHECK_FALSE(empty.has_shadows());
+  CHECK_FALSE(empty.has_specular);
+  CHECK_FALSE(empty.has_reflective);
+
+  s.spheres = {sphere(-1, 0), sphere(10, 0)};  // -1 = matte
+  s.lights = {light(LightType::Directional), light(LightType::Ambient)};
+  KernelFeatures f = kernel_features(s, 5);
+  CHECK(f.light_types == std::vector<LightType>{LightType::Directional, LightType::Ambient});
+  CHECK(f.has_ambient);
+  CHECK_FALSE(f.has_point);
+  CHECK(f.has_directional);
+  CHECK(f.has_shadows());
+  CHECK(f.has_specular);
+  CHECK_FALSE(f.has_reflective);
+
+  // Only ambient light: no shadow rays.
+  s.lights = {light(LightType::Ambient)};
+  CHECK_FALSE(kernel_features(s, 5).has_shadows());
+  // Only matte spheres: no specular term.
+  s.spheres = {sphere(-1, 0)};
+  CHECK_FALSE(kernel_features(s, 5).has_specular);
+}
+
+TEST_CASE("depth is folded to 0 when nothing reflects", "[features]") {
+  Scene s;
+  s.spheres = {sphere(10, 0)};
+  s.lights = {light(LightType::Point)};
+  // Nothing reflects: every depth gives the same features (one program).
+  CHECK(kernel_features(s, 0) == kernel_features(s, 7));
+  CHECK(kernel_features(s, 7).depth == 0);
+  s.spheres.push_back(sphere(10, 0.5));
+  CHECK(kernel_features(s, 7).depth == 7);
+  CHECK(kernel_features(s, 0) != kernel_features(s, 7));
+}
+
+TEST_CASE("features compare as values", "[features]") {
+  const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
+  CHECK(kernel_features(demo, 3) == kernel_features(demo, 3));
+  CHECK_FALSE(kernel_features(demo, 3) != kernel_features(demo, 3));
+  CHECK(kernel_features(demo, 2) != kernel_features(demo, 3));
+  Scene reordered = demo;
+  std::swap(reordered.lights[0], reordered.lights[2]);  // same light kinds, other order
+  CHECK(kernel_features(reordered, 3) != kernel_features(demo, 3));
+  Scene moved = demo;
+  moved.spheres[0].center.x += 1;  // geometry is not a feature
+  moved.camera.position.y += 1;
+  CHECK(kernel_features(moved, 3) == kernel_features(demo, 3));
+}
+
+TEST_CASE("counts are unrolled up to the bound only", "[features][specialize]") {
+  static_assert(counts_unrolled(kMaxUnrolledSpheres, kMaxUnrolledLights));
+  static_assert(!counts_unrolled(kMaxUnrolledSpheres + 1, 0));
+  static_assert(!counts_unrolled(0, kMaxUnrolledLights + 1));
+  CHECK(counts_unrolled(0, 0));
+  Scene s;
+  s.spheres.resize(kMaxUnrolledSpheres);
+  s.lights.resize(kMaxUnrolledLights);
+  CHECK(kernel_features(s, 3).unroll_counts);
+  s.spheres.resize(kMaxUnrolledSpheres + 1);
+  CHECK_FALSE(kernel_features(s, 3).unroll_counts);
+  s.spheres.resize(1);
+  s.lights.resize(kMaxUnrolledLights + 1);
+  CHECK_FALSE(kernel_features(s, 3).unroll_counts);
+  // Features beyond the bound still hold every light's type.
+  CHECK(kernel_features(s, 3).light_types.size() == kMaxUnrolledLights + 1);
+}
+
+TEST_CASE("features become one -D list, joined for the build and the cache key", "[features][options]") {
+  const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
+  const KernelFeatures f = kernel_features(demo, 3);
+  KernelConfig cfg;  // robust, specialized, lanes not yet resolved by a device: 8
+  const std::vector<std::string> expected = {
+      "-cl-std=CL1.2",         "-DCLRT_PRECISION=2",      "-cl-denorms-are-zero",
+      "-DCLRT_LANES=8",        "-DCLRT_SPECIALIZED",      "-DCLRT_DEPTH=3",
+      "-DCLRT_HAS_AMBIENT=1",  "-DCLRT_HAS_POINT=1",      "-DCLRT_HAS_DIRECTIONAL=1",
+      "-DCLRT_HAS_SPECULAR=1", "-DCLRT_HAS_REFLECTIVE=1", "-DCLRT_N_SPHERES=4",
+      "-DCLRT_N_LIGHTS=3",     "-DCLRT_LIGHT_TYPES=0,1,2"};
+  CHECK(build_option_list(cfg, f, false) == expected);
+  // The old entry point is the composition of the two steps.
+  CHECK(build_options(cfg, demo, 3, false) == join_build_options(expected));
+  CHECK(join_build_options(expected).find("-cl-std=CL1.2 -DCLRT_PRECISION=2 -cl-denorms-are-zero") == 0);
+  CHECK(join_build_options({}).empty());
+
+  SECTION("generic: no scene options, one lane") {
+    KernelConfig generic;
+    generic.specialize = false;
+    CHECK(build_option_list(generic, f, false) ==
+          std::vector<std::string>{"-cl-std=CL1.2", "-DCLRT_PRECISION=2", "-cl-denorms-are-zero"});
+  }
+  SECTION("configuration options, in order, extra options verbatim last") {
+    KernelConfig c;
+    c.precision = Precision::Fast;
+    c.denorms_zero = false;
+    c.count_rays = true;
+    c.lanes = 16;
+    c.specialize = false;
+    c.extra_options = "-DCLRT_LIB_POW -DCLRT_SHADOW_ALL_SPHERES";
+    CHECK(build_option_list(c, f, false) ==
+          std::vector<std::string>{"-cl-std=CL1.2", "-DCLRT_PRECISION=3", "-cl-fast-relaxed-math", "-DCLRT_COUNT_RAYS",
+                                   "-DCLRT_LANES=16", "-DCLRT_LIB_POW -DCLRT_SHADOW_ALL_SPHERES"});
+  }
+  SECTION("every precision passes its CLRT_PRECISION code") {
+    static_assert(kernel_code(Precision::Naive) == CLRT_PRECISION_NAIVE);
+    static_assert(kernel_code(Precision::Stable) == CLRT_PRECISION_STABLE);
+    static_assert(kernel_code(Precision::Robust) == CLRT_PRECISION_ROBUST);
+    static_assert(kernel_code(Precision::Fast) == CLRT_PRECISION_FAST);
+    static_assert(kernel_code(Precision::Fp64) == CLRT_PRECISION_FP64);
+    for (Precision p : all_precisions()) {
+      KernelConfig c;
+      c.precision = p;
+      CHECK(has(build_option_list(c, f, true), "-DCLRT_PRECISION=" + std::to_string(kernel_code(p))));
+    }
+  }
+  SECTION("nothing reflective: depth 0, no reflections") {
+    Scene matte = demo;
+    for (auto& s : matte.spheres) s.reflective = 0;
+    const auto options = build_option_list(cfg, kernel_features(matte, 5), false);
+    CHECK(has(options, "-DCLRT_DEPTH=0"));
+    CHECK(has(options, "-DCLRT_HAS_REFLECTIVE=0"));
+  }
+  SECTION("depth 0: reflective spheres, but no reflection rays") {
+    const auto options = build_option_list(cfg, kernel_features(demo, 0), false);
+    CHECK(has(options, "-DCLRT_DEPTH=0"));
+    CHECK(has(options, "-DCLRT_HAS_REFLECTIVE=0"));
+  }
+  SECTION("past the unroll bound: the other specializations stay") {
+    Scene big = demo;
+    big.spheres.resize(kMaxUnrolledSpheres + 1, demo.spheres[0]);
+    const auto options = build_option_list(cfg, kernel_features(big, 3), false);
+    CHECK(has(options, "-DCLRT_SPECIALIZED"));
+    CHECK(has(options, "-DCLRT_HAS_SPECULAR=1"));
+    CHECK_FALSE(has_prefix(options, "-DCLRT_N_SPHERES"));
+    CHECK_FALSE(has_prefix(options, "-DCLRT_N_LIGHTS"));
+    CHECK_FALSE(has_prefix(options, "-DCLRT_LIGHT_TYPES"));
+  }
+  SECTION("no lights: counts, but no light type list") {
+    Scene dark = demo;
+    dark.lights.clear();
+    const auto options = build_option_list(cfg, kernel_features(dark, 3), false);
+    CHECK(has(options, "-DCLRT_N_LIGHTS=0"));
+    CHECK_FALSE(has_prefix(options, "-DCLRT_LIGHT_TYPES"));
+  }
+}
+
+TEST_CASE("fp64 needs cl_khr_fp64, decided in one place", "[features][options]") {
+  const KernelFeatures f = kernel_features(clrt_test::load("scenes/cgfs-demo.json"), 3);
+  KernelConfig cfg;
+  cfg.precision = Precision::Fp64;
+  CHECK_FALSE(precision_supported(Precision::Fp64, false));
+  CHECK(precision_supported(Precision::Fp64, true));
+  for (Precision p : all_precisions())
+    if (p != Precision::Fp64) CHECK(precision_supported(p, false));
+  CHECK_THROWS_WITH(build_option_list(cfg, f, false), Contains("cl_khr_fp64"));
+  CHECK_THROWS_AS(build_options(cfg, Scene{}, 3, false), UserError);
+  const auto options = build_option_list(cfg, f, true);
+  CHECK(has(options, "-DCLRT_PRECISION=4"));
+  CHECK_FALSE(has_prefix(options, "-DCLRT_LANES"));  // fp64 kernels are scalar
+}
+
+TEST_CASE("lane counts: explicit, unresolved and per device", "[features][lanes]") {
+  KernelConfig cfg;
+  SECTION("kernel_lanes") {
+    CHECK(kernel_lanes(cfg) == 8);  // specialized float, no device has chosen yet
+    for (int lanes : {1, 4, 8, 16}) {
+      cfg.lanes = lanes;
+      CHECK(kernel_lanes(cfg) == lanes);
+    }
+    cfg.lanes = 0;
+    cfg.specialize = false;
+    CHECK(kernel_lanes(cfg) == 1);
+    cfg.specialize = true;
+    cfg.precision = Precision::Fp64;
+    CHECK(kernel_lanes(cfg) == 1);
+    cfg.lanes = 1;
+    CHECK(kernel_lanes(cfg) == 1);
+  }
+  SECTION("kernel_lanes rejects other counts, and vectors with fp64") {
+    for (int lanes : {-1, 2, 3, 32}) {
+      cfg.lanes = lanes;
+      CHECK_THROWS_WITH(kernel_lanes(cfg), Contains("--lanes must be 1, 4, 8 or 16"));
+      CHECK_THROWS_AS(build_option_list(cfg, KernelFeatures{}, true), UserError);
+    }
+    cfg.precision = Precision::Fp64;
+    cfg.lanes = 4;
+    CHECK_THROWS_WITH(kernel_lanes(cfg), Contains("fp64 kernels are scalar"));
+  }
+  SECTION("default_lanes") {
+    CHECK(default_lanes(cfg, device("CPU", 16)) == 16);  // AVX-512
+    CHECK(default_lanes(cfg, device("CPU", 8)) == 8);
+    CHECK(default_lanes(cfg, device("CPU", 4)) == 8);
+    CHECK(default_lanes(cfg, device("GPU", 16)) == 1);  // work-items are SIMD lanes already
+    CHECK(default_lanes(cfg, device("ACCELERATOR", 16)) == 1);
+    KernelConfig generic;
+    generic.specialize = false;
+    CHECK(default_lanes(generic, device("CPU", 16)) == 1);
+    KernelConfig fp64;
+    fp64.precision = Precision::Fp64;
+    CHECK(default_lanes(fp64, device("CPU", 16)) == 1);
+  }
+}
