@@ -8,12 +8,16 @@
 
 #include "cl/device.hpp"
 #include "render/renderer.hpp"
-#include "scene/scene.hpp"
+#include "scene/scene_json.hpp"
 
 namespace clrt_test {
 
-inline std::string source_path(const std::string& rel) { return std::string(CLRT_SOURCE_DIR) + "/" + rel; }
-inline clrt::Scene load(const std::string& rel) { return clrt::load_scene(source_path(rel)); }
+inline std::string source_path(const std::string& rel) {
+  return std::string(CLRT_SOURCE_DIR) + "/" + rel;
+}
+inline clrt::Scene load(const std::string& rel) {
+  return clrt::load_scene(source_path(rel));
+}
 
 // The device the OpenCL tests run on: $CLRT_TEST_DEVICE (a --device spec,
 // e.g. an index or "rusticl"; tests/every_device.sh sets it to run them on
@@ -22,7 +26,9 @@ inline std::string test_device_spec() {
   const char* spec = std::getenv("CLRT_TEST_DEVICE");
   return spec ? spec : "";
 }
-inline clrt::DeviceInfo test_device() { return clrt::select_device(test_device_spec()); }
+inline clrt::DeviceInfo test_device() {
+  return clrt::select_device(test_device_spec());
+}
 
 // A renderer on the test device.
 inline clrt::Renderer renderer(const clrt::KernelConfig& kernel, clrt::TilePolicy tiles = {},

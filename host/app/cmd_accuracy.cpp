@@ -8,7 +8,8 @@
 #include "app/options.hpp"
 #include "cl/device.hpp"
 #include "eval/accuracy.hpp"
-#include "image/image.hpp"
+#include "image/image_file.hpp"
+#include "scene/scene_json.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 

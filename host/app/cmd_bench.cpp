@@ -5,6 +5,7 @@
 #include "app/bench_report.hpp"
 #include "app/options.hpp"
 #include "eval/bench.hpp"
+#include "scene/scene_json.hpp"
 #include "util/error.hpp"
 #include "util/json_text.hpp"
 

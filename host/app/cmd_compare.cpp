@@ -9,6 +9,8 @@
 #include "app/options.hpp"
 #include "cl/launch_timing.hpp"
 #include "eval/compare.hpp"
+#include "image/image_file.hpp"
+#include "scene/scene_json.hpp"
 #include "util/error.hpp"
 #include "util/json_text.hpp"
 

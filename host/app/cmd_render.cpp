@@ -6,6 +6,8 @@
 #include "app/frame_report.hpp"
 #include "app/options.hpp"
 #include "cl/launch_timing.hpp"
+#include "image/image_file.hpp"
+#include "scene/scene_json.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 

@@ -6,8 +6,8 @@
 #include <iostream>
 #include <string>
 
-#include "cl/cl.hpp"
 #include "app/options.hpp"
+#include "cl/cl.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 

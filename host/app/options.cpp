@@ -1,6 +1,8 @@
 // options.cpp - the option groups: their flags, checks and conversions.
 #include "app/options.hpp"
 
+#include <stdexcept>
+
 #include "clrt_layout.h"
 #include "render/precision.hpp"
 #include "util/error.hpp"
@@ -79,7 +81,9 @@ void LaunchOptions::validate() const {
   (void)local();
 }
 
-LocalSize LaunchOptions::local() const { return parse_local_size(local_size); }
+LocalSize LaunchOptions::local() const {
+  return parse_local_size(local_size);
+}
 
 LocalSize parse_local_size(const std::string& s) {
   LocalSize size;
@@ -95,6 +99,25 @@ LocalSize parse_local_size(const std::string& s) {
     throw UserError("--local: expected WxH with positive integers (got \"" + s + "\")");
   }
   return size;
+}
+
+void parse_depth_range(const std::string& s, int& from, int& to) {
+  try {
+    size_t colon = s.find(':'), used = 0;
+    if (colon == std::string::npos) {
+      from = to = std::stoi(s, &used);
+      if (used != s.size()) throw std::invalid_argument("trailing");
+    } else {
+      size_t used2 = 0;
+      from = std::stoi(s.substr(0, colon), &used);
+      to = std::stoi(s.substr(colon + 1), &used2);
+      if (used != colon || used2 != s.size() - colon - 1) throw std::invalid_argument("trailing");
+    }
+  } catch (const std::exception&) {
+    throw UserError("--depths: expected A:B or N with integers (got \"" + s + "\")");
+  }
+  if (from < 0 || to < from || to > CLRT_MAX_DEPTH)
+    throw UserError("--depths: need 0 <= A <= B <= " + std::to_string(CLRT_MAX_DEPTH) + " (got \"" + s + "\")");
 }
 
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help) {

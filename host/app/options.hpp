@@ -58,9 +58,9 @@ struct KernelOptions {
 
 // How a frame is launched: --local, --band-rows, --max-launch-ms.
 struct LaunchOptions {
-  std::string local_size;      // "WxH" or ""
-  int band_rows = 0;           // fixed band height, 0 = adaptive
-  double max_launch_ms = -1;   // -1 = device default (500 ms GPU, none CPU)
+  std::string local_size;     // "WxH" or ""
+  int band_rows = 0;          // fixed band height, 0 = adaptive
+  double max_launch_ms = -1;  // -1 = device default (500 ms GPU, none CPU)
 
   void add(CLI::App* cmd);
   void validate() const;
@@ -86,6 +86,10 @@ struct RenderOptions {
   void validate() const;
   RenderSettings settings() const { return RenderSettings{kernel.config(), launch.tiles(), launch.local()}; }
 };
+
+// --depths: "A:B" (inclusive, 0 <= A <= B <= CLRT_MAX_DEPTH) or a single "N";
+// UserError on anything else.
+void parse_depth_range(const std::string& s, int& from, int& to);
 
 // Parses "8x8" into {8, 8}; UserError on anything else ("" = default {0, 0}).
 LocalSize parse_local_size(const std::string& s);

@@ -3,11 +3,10 @@
 
 #include <unistd.h>
 
-#include <cstdlib>
-#include <filesystem>
-
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -36,7 +35,8 @@ std::string trim(std::string s) {
 }
 
 bool all_digits(const std::string& s) {
-  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+  return !s.empty() &&
+         std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
 }
 
 }  // namespace
@@ -73,7 +73,8 @@ std::vector<DeviceInfo> list_devices() {
                       "); install an OpenCL driver such as pocl-opencl-icd, or use --engine reference");
   }
   if (platforms.empty())
-    throw DeviceError("no OpenCL platform found; install an OpenCL driver such as pocl-opencl-icd, or use --engine reference");
+    throw DeviceError(
+        "no OpenCL platform found; install an OpenCL driver such as pocl-opencl-icd, or use --engine reference");
   std::vector<DeviceInfo> out;
   for (auto& p : platforms) {
     std::vector<cl::Device> devs;
@@ -115,7 +116,9 @@ size_t default_device(const std::vector<DeviceInfo>& all) {
   return 0;
 }
 
-std::vector<DeviceInfo> select_devices(const std::string& spec) { return pick_devices(list_devices(), spec); }
+std::vector<DeviceInfo> select_devices(const std::string& spec) {
+  return pick_devices(list_devices(), spec);
+}
 
 std::vector<DeviceInfo> pick_devices(const std::vector<DeviceInfo>& all, const std::string& spec_in) {
   if (all.empty()) throw std::logic_error("pick_devices without devices");

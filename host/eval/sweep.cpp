@@ -4,31 +4,10 @@
 
 #include <map>
 
-#include "clrt_layout.h"
 #include "reference/reference.hpp"
-#include "util/error.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
-
-void parse_depth_range(const std::string& s, int& from, int& to) {
-  try {
-    size_t colon = s.find(':'), used = 0;
-    if (colon == std::string::npos) {
-      from = to = std::stoi(s, &used);
-      if (used != s.size()) throw std::invalid_argument("trailing");
-    } else {
-      size_t used2 = 0;
-      from = std::stoi(s.substr(0, colon), &used);
-      to = std::stoi(s.substr(colon + 1), &used2);
-      if (used != colon || used2 != s.size() - colon - 1) throw std::invalid_argument("trailing");
-    }
-  } catch (const std::exception&) {
-    throw UserError("--depths: expected A:B or N with integers (got \"" + s + "\")");
-  }
-  if (from < 0 || to < from || to > CLRT_MAX_DEPTH)
-    throw UserError("--depths: need 0 <= A <= B <= " + std::to_string(CLRT_MAX_DEPTH) + " (got \"" + s + "\")");
-}
 
 std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<DeviceInfo>& devices,
                                 const RenderSettings& settings, const SweepSettings& s) {

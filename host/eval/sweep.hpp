@@ -32,9 +32,6 @@ struct SweepSettings {
   SweepProgress progress;  // empty: none
 };
 
-// Parses "A:B" (inclusive, 0 <= A <= B <= CLRT_MAX_DEPTH) or a single "N".
-void parse_depth_range(const std::string& s, int& from, int& to);
-
 std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<DeviceInfo>& devices,
                                 const RenderSettings& settings, const SweepSettings& s);
 

@@ -12,7 +12,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "image/image.hpp"
+#include "image/image_file.hpp"
 #include "util/log.hpp"
 
 namespace clrt {

@@ -73,7 +73,8 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
 
 }  // namespace
 
-std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img, const TilePolicy& policy) {
+std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img,
+                                      const TilePolicy& policy) {
   std::vector<DeviceShare> shares(workers.size());
   for (size_t i = 0; i < workers.size(); ++i) shares[i].device = workers[i]->device().name;
   BandQueue queue(img.height, int(workers.size()));

@@ -24,9 +24,15 @@ int kernel_lanes(const KernelConfig& cfg) {
 
 namespace {
 
-std::string define(const std::string& name, int value) { return "-D" + name + "=" + std::to_string(value); }
-std::string define(const std::string& name, size_t value) { return "-D" + name + "=" + std::to_string(value); }
-std::string define(const std::string& name, bool value) { return define(name, value ? 1 : 0); }
+std::string define(const std::string& name, int value) {
+  return "-D" + name + "=" + std::to_string(value);
+}
+std::string define(const std::string& name, size_t value) {
+  return "-D" + name + "=" + std::to_string(value);
+}
+std::string define(const std::string& name, bool value) {
+  return define(name, value ? 1 : 0);
+}
 
 // The -D options of a specialized build (kernels/clrt_config.h reads them).
 void add_specialization(const KernelFeatures& features, std::vector<std::string>& options) {

@@ -7,11 +7,16 @@ namespace clrt {
 
 std::string precision_name(Precision p) {
   switch (p) {
-    case Precision::Naive: return "naive";
-    case Precision::Stable: return "stable";
-    case Precision::Robust: return "robust";
-    case Precision::Fast: return "fast";
-    case Precision::Fp64: return "fp64";
+    case Precision::Naive:
+      return "naive";
+    case Precision::Stable:
+      return "stable";
+    case Precision::Robust:
+      return "robust";
+    case Precision::Fast:
+      return "fast";
+    case Precision::Fp64:
+      return "fp64";
   }
   return "?";
 }

@@ -17,7 +17,9 @@ enum class Precision {
 };
 
 // The value of -DCLRT_PRECISION for `p`.
-constexpr int kernel_code(Precision p) { return static_cast<int>(p); }
+constexpr int kernel_code(Precision p) {
+  return static_cast<int>(p);
+}
 std::string precision_name(Precision p);
 Precision parse_precision(const std::string& name);  // UserError on unknown
 const std::vector<Precision>& all_precisions();

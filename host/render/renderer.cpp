@@ -13,7 +13,8 @@ namespace clrt {
 
 Renderer::Renderer(const std::vector<DeviceInfo>& devices, const RenderSettings& settings) : settings_(settings) {
   if (devices.empty()) throw std::logic_error("Renderer without devices");
-  for (const auto& d : devices) devices_.push_back(std::make_unique<DeviceRenderer>(d, settings.kernel, settings.local));
+  for (const auto& d : devices)
+    devices_.push_back(std::make_unique<DeviceRenderer>(d, settings.kernel, settings.local));
 }
 
 std::string Renderer::device_names() const {
@@ -22,7 +23,9 @@ std::string Renderer::device_names() const {
   return names;
 }
 
-const std::string& Renderer::options() const { return devices_.front()->options(); }
+const std::string& Renderer::options() const {
+  return devices_.front()->options();
+}
 
 void Renderer::prepare(const Scene& scene, int width, int height, int depth) {
   // One host thread per device beyond the first: builds take seconds.

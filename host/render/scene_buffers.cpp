@@ -57,14 +57,19 @@ void split_hi_lo(double value, float& hi, float& lo) {
 
 int kernel_light_code(LightType type) {
   switch (type) {
-    case LightType::Ambient: return CLRT_LIGHT_AMBIENT;
-    case LightType::Point: return CLRT_LIGHT_POINT;
-    case LightType::Directional: return CLRT_LIGHT_DIRECTIONAL;
+    case LightType::Ambient:
+      return CLRT_LIGHT_AMBIENT;
+    case LightType::Point:
+      return CLRT_LIGHT_POINT;
+    case LightType::Directional:
+      return CLRT_LIGHT_DIRECTIONAL;
   }
   return CLRT_LIGHT_AMBIENT;  // unreachable: every LightType is listed above
 }
 
-bool camera_relative(Precision p) { return p == Precision::Robust || p == Precision::Fast; }
+bool camera_relative(Precision p) {
+  return p == Precision::Robust || p == Precision::Fast;
+}
 
 SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth) {
   SceneData d;

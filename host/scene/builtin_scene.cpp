@@ -1,6 +1,8 @@
 // builtin_scene.cpp - the demo scene (same values as scenes/cgfs-demo.json).
 #include "scene/builtin_scene.hpp"
 
+#include "scene/scene_json.hpp"
+
 namespace clrt {
 
 Scene builtin_demo_scene() {

@@ -1,4 +1,5 @@
-// scene.hpp - the scene model (double precision) and its JSON loader.
+// scene.hpp - the scene model (double precision) and the range every engine
+// renders; scene_json.hpp reads and writes it.
 #pragma once
 #include <array>
 #include <string>
@@ -11,9 +12,9 @@ namespace clrt {
 struct Sphere {
   Vec3 center;
   double radius = 1;
-  Vec3 color;               // 0..255
-  double specular = -1;     // -1 = matte
-  double reflective = 0;    // 0..1
+  Vec3 color;             // 0..255
+  double specular = -1;   // -1 = matte
+  double reflective = 0;  // 0..1
 };
 
 enum class LightType { Ambient, Point, Directional };
@@ -53,17 +54,5 @@ struct Scene {
 // rejects anything outside, naming the value and the limit.
 constexpr double kMaxLength = 1e8, kMinLength = 1e-8;
 constexpr double kMaxSpecular = 1e8, kMaxTotalIntensity = 1e30;
-
-// Parses and validates a scene; throws UserError("<name>: <path>: <problem>").
-// Directional light directions are rescaled by a power of two so their
-// largest component lies in [0.5, 1) (no length underflows or overflows):
-// the book's lighting does not depend on their length.
-Scene parse_scene(const std::string& json_text, const std::string& name);
-// Largest scene file load_scene() accepts.
-constexpr size_t kMaxSceneBytes = size_t(64) << 20;
-// Reads a file and parses it; a missing/unreadable/oversized file is a UserError.
-Scene load_scene(const std::string& path);
-// Serializes a scene back to JSON text (used by generated test suites).
-std::string scene_to_json(const Scene& s);
 
 }  // namespace clrt

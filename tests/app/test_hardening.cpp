@@ -17,17 +17,17 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "render/build_options.hpp"
-#include "render/renderer.hpp"
+#include "cl/program_cache.hpp"
 #include "cli_run.hpp"
 #include "eval/compare.hpp"
+#include "reference/reference.hpp"
+#include "render/build_options.hpp"
+#include "render/precision.hpp"
+#include "render/renderer.hpp"
+#include "scene/scene_json.hpp"
+#include "test_util.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
-#include "render/precision.hpp"
-#include "cl/program_cache.hpp"
-#include "reference/reference.hpp"
-#include "scene/scene.hpp"
-#include "test_util.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -244,8 +244,7 @@ TEST_CASE("at the edges of the accepted range no engine or precision gives a NaN
       INFO(text.substr(0, 60) << " / " << clrt::precision_name(p));
       clrt::KernelConfig cfg;
       cfg.precision = p;
-      const clrt::Comparison c =
-          clrt::compare_images(clrt_test::render_cl(s, 32, 24, 3, cfg), ref);
+      const clrt::Comparison c = clrt::compare_images(clrt_test::render_cl(s, 32, 24, 3, cfg), ref);
       CHECK(c.nan_inf == 0);
       CHECK(c.nan_inf_reference == 0);
     }

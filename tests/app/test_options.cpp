@@ -72,3 +72,17 @@ TEST_CASE("the depth defaults to the scene's", "[options]") {
   o.depth = 0;
   CHECK(o.effective_depth(s) == 0);
 }
+
+TEST_CASE("sweep depth ranges: A:B or N within [0, CLRT_MAX_DEPTH]", "[options]") {
+  int from = -1, to = -1;
+  parse_depth_range("0:10", from, to);
+  CHECK(from == 0);
+  CHECK(to == 10);
+  parse_depth_range("3", from, to);
+  CHECK(from == 3);
+  CHECK(to == 3);
+  for (const char* bad : {"", ":", "1:", ":2", "2:1", "-1:2", "1:2:3", "a:b", "1 :2", "0:99999", "99999999999"}) {
+    INFO(bad);
+    CHECK_THROWS_AS(parse_depth_range(bad, from, to), UserError);
+  }
+}

@@ -1,12 +1,11 @@
-// test_timing.cpp - the profiling-event plausibility rule (launch_timing.hpp),
-// timing summaries (stats.hpp), and bench on a driver whose events are
-// implausible (Mesa rusticl, when installed and enabled as in CI).
+// test_timing.cpp - the profiling-event plausibility rule (launch_timing.hpp)
+// and bench on a driver whose events are implausible (Mesa rusticl, when
+// installed and enabled as in CI).
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "cli_run.hpp"
 #include "cl/launch_timing.hpp"
-#include "util/stats.hpp"
+#include "cli_run.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;
@@ -48,22 +47,6 @@ TEST_CASE("a total says where its time came from", "[timing]") {
   CHECK(time_source_note(0, 5).empty());
   CHECK(time_source_note(5, 5).find("host wall clock") != std::string::npos);
   CHECK(time_source_note(2, 5).find("2 of 5") != std::string::npos);
-}
-
-TEST_CASE("timing summaries: N, median, mean, sample sd, min, max", "[timing]") {
-  Stats s = summarize({4, 1, 3, 2});
-  CHECK(s.n == 4);
-  CHECK(s.median == 2.5);
-  CHECK(s.mean == 2.5);
-  CHECK(s.sd == Approx(std::sqrt(5.0 / 3.0)));  // sum of squares 5, N-1 = 3
-  CHECK(s.min == 1);
-  CHECK(s.max == 4);
-  Stats one = summarize({7});
-  CHECK(one.n == 1);
-  CHECK(one.sd == 0);
-  CHECK(format_stats(one) == "7.00 ms (N=1)");
-  CHECK(format_stats(summarize({1, 3}), "x") == "median 2.00x, mean 2.00 ± 1.41, min 1.00, max 3.00 (N=2)");
-  CHECK(summarize({}).n == 0);
 }
 
 namespace {

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "scene/scene_json.hpp"
 #include "util/error.hpp"
-#include "scene/scene.hpp"
 
 namespace {
 

@@ -5,17 +5,21 @@
 
 #include "image/image.hpp"
 #include "reference/reference.hpp"
+#include "scene/scene_json.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;
 
 namespace {
 // Pixel (col, row) of an image, channel k.
-double px(const Image& img, int col, int row, int k) { return img.rgb[(size_t(row) * img.width + col) * 3 + k]; }
+double px(const Image& img, int col, int row, int k) {
+  return img.rgb[(size_t(row) * img.width + col) * 3 + k];
+}
 
 Scene single_sphere(const char* extra_sphere, const char* lights, const char* background = "[0,0,0]") {
-  std::string j = std::string(R"({"background": )") + background + R"(, "spheres": [{"center": [0,0,5], "radius": 1, "color": [100,50,20])" +
-                  extra_sphere + "}], \"lights\": [" + lights + "]}";
+  std::string j = std::string(R"({"background": )") + background +
+                  R"(, "spheres": [{"center": [0,0,5], "radius": 1, "color": [100,50,20])" + extra_sphere +
+                  "}], \"lights\": [" + lights + "]}";
   return parse_scene(j, "inline");
 }
 }  // namespace

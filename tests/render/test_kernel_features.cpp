@@ -9,6 +9,7 @@
 #include "render/build_options.hpp"
 #include "render/kernel_features.hpp"
 #include "render/precision_support.hpp"
+#include "scene/scene_json.hpp"
 #include "test_util.hpp"
 #include "util/error.hpp"
 

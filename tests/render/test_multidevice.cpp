@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli_run.hpp"
+#include "image/image_file.hpp"
 #include "render/renderer.hpp"
 #include "test_util.hpp"
 
@@ -46,10 +47,9 @@ TEST_CASE("two PoCL devices render the same bytes as one", "[opencl][multidevice
     for (const char* band : {"0", "7"}) {  // adaptive bands, and many small fixed ones
       INFO("POCL_DEVICES=" << devices << " --band-rows " << band);
       std::string out = dir / (std::string("multi-") + band + ".exr");
-      auto r = clrt_test::run_clrt({"render", scene, "--width", "320", "--height", "240", "--device", "all",
-                                    "--band-rows", band, "-o", out},
-                                   "OCL_ICD_VENDORS=/etc/OpenCL/vendors/pocl.icd POCL_DEVICES=" +
-                                       clrt_test::shell_quote(devices));
+      auto r = clrt_test::run_clrt(
+          {"render", scene, "--width", "320", "--height", "240", "--device", "all", "--band-rows", band, "-o", out},
+          "OCL_ICD_VENDORS=/etc/OpenCL/vendors/pocl.icd POCL_DEVICES=" + clrt_test::shell_quote(devices));
       INFO(r.out << r.err);
       REQUIRE(r.status == 0);
       CHECK(count_lines_with(r.out, "  device ") == 2);  // one share line per device

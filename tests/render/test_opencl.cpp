@@ -4,13 +4,14 @@
 #include <filesystem>
 #include <iterator>
 
-#include "render/renderer.hpp"
-#include "eval/compare.hpp"
 #include "cl/device.hpp"
 #include "cl/kernel_source.hpp"
 #include "cl/program.hpp"
+#include "eval/compare.hpp"
 #include "reference/reference.hpp"
+#include "render/renderer.hpp"
 #include "render/scene_buffers.hpp"
+#include "scene/scene_json.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;

@@ -6,10 +6,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "render/renderer.hpp"
-#include "cli_run.hpp"
 #include "cl/device.hpp"
 #include "cl/program_cache.hpp"
+#include "cli_run.hpp"
+#include "render/renderer.hpp"
+#include "scene/scene_json.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;
@@ -52,7 +53,7 @@ TEST_CASE("specialized and generic kernels give identical images on every scene"
   DeviceInfo dev = clrt_test::test_device();
   KernelConfig generic;
   generic.specialize = false;
-  KernelConfig special;  // default: specialized, 8 lanes
+  KernelConfig special;  // default: specialized, the device's default lanes (default_lanes())
   for (const auto& path : clrt_test::shipped_scenes()) {
     Scene s = load_scene(path);
     for (int depth : {0, 1, 3}) {

@@ -1,9 +1,9 @@
 // test_scene.cpp - scene parsing, defaults and validation.
 #include <catch2/catch.hpp>
 
-#include "util/error.hpp"
-#include "scene/scene.hpp"
+#include "scene/scene_json.hpp"
 #include "test_util.hpp"
+#include "util/error.hpp"
 
 using namespace clrt;
 

@@ -1,9 +1,10 @@
-// scene.cpp - strict JSON scene loader: unknown keys, wrong types, non-finite
-// numbers and out-of-range values are all rejected with a one-line message.
-#include "scene/scene.hpp"
+// scene_json.cpp - strict JSON scene loader: unknown keys, wrong types,
+// non-finite numbers and out-of-range values are all rejected with a one-line
+// message.
+#include "scene/scene_json.hpp"
 
-#include <cerrno>
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -29,8 +30,7 @@ class Parser {
     throw UserError(name_ + ": " + (where.empty() ? "" : where + ": ") + what);
   }
 
-  void only_keys(const json& obj, const std::string& where,
-                 std::initializer_list<const char*> keys) const {
+  void only_keys(const json& obj, const std::string& where, std::initializer_list<const char*> keys) const {
     if (!obj.is_object()) fail(where, "expected an object, got " + type_of(obj));
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       bool known = false;
@@ -119,12 +119,14 @@ class Parser {
     if (root.contains("spheres")) {
       const json& arr = root["spheres"];
       if (!arr.is_array()) fail("spheres", "expected an array, got " + type_of(arr));
-      for (size_t i = 0; i < arr.size(); ++i) s.spheres.push_back(parse_sphere(arr[i], "spheres[" + std::to_string(i) + "]"));
+      for (size_t i = 0; i < arr.size(); ++i)
+        s.spheres.push_back(parse_sphere(arr[i], "spheres[" + std::to_string(i) + "]"));
     }
     if (root.contains("lights")) {
       const json& arr = root["lights"];
       if (!arr.is_array()) fail("lights", "expected an array, got " + type_of(arr));
-      for (size_t i = 0; i < arr.size(); ++i) s.lights.push_back(parse_light(arr[i], "lights[" + std::to_string(i) + "]"));
+      for (size_t i = 0; i < arr.size(); ++i)
+        s.lights.push_back(parse_light(arr[i], "lights[" + std::to_string(i) + "]"));
       double total = 0;
       for (const auto& l : s.lights) total += l.intensity;
       if (total > kMaxTotalIntensity)
@@ -135,7 +137,8 @@ class Parser {
     const auto& r = s.camera.rotation;
     const double half_w = s.camera.viewport_w / 2, half_h = s.camera.viewport_h / 2, d = s.camera.projection_plane_d;
     for (int row = 0; row < 3; ++row) {
-      const double reach = std::fabs(r[row * 3]) * half_w + std::fabs(r[row * 3 + 1]) * half_h + std::fabs(r[row * 3 + 2]) * d;
+      const double reach =
+          std::fabs(r[row * 3]) * half_w + std::fabs(r[row * 3 + 1]) * half_h + std::fabs(r[row * 3 + 2]) * d;
       if (reach > kMaxLength)
         fail("camera", "ray directions reach " + fmt(reach) + " (rotation row " + std::to_string(row) +
                            " times viewport and projection distance), more than " + fmt(kMaxLength) +
@@ -161,7 +164,8 @@ class Parser {
       const json& v = j["viewport"];
       if (!v.is_array() || v.size() != 2) fail("camera.viewport", "expected an array of 2 numbers");
       for (int k = 0; k < 2; ++k)
-        if (!(number(v[k], "camera.viewport[" + std::to_string(k) + "]") > 0)) fail("camera.viewport", "sizes must be > 0");
+        if (!(number(v[k], "camera.viewport[" + std::to_string(k) + "]") > 0))
+          fail("camera.viewport", "sizes must be > 0");
       c.viewport_w = size(v[0], "camera.viewport[0]", "must be > 0");
       c.viewport_h = size(v[1], "camera.viewport[1]", "must be > 0");
     }
@@ -181,8 +185,10 @@ class Parser {
     s.color = color(j["color"], w + ".color");
     if (j.contains("specular")) {
       s.specular = number(j["specular"], w + ".specular");
-      if (s.specular != -1 && s.specular < 0) fail(w + ".specular", "must be -1 (matte) or >= 0 (got " + fmt(s.specular) + ")");
-      if (s.specular > kMaxSpecular) fail(w + ".specular", "must be at most " + fmt(kMaxSpecular) + " (got " + fmt(s.specular) + ")");
+      if (s.specular != -1 && s.specular < 0)
+        fail(w + ".specular", "must be -1 (matte) or >= 0 (got " + fmt(s.specular) + ")");
+      if (s.specular > kMaxSpecular)
+        fail(w + ".specular", "must be at most " + fmt(kMaxSpecular) + " (got " + fmt(s.specular) + ")");
     }
     if (j.contains("reflective")) s.reflective = number_in(j["reflective"], w + ".reflective", 0, 1);
     return s;
