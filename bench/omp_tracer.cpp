@@ -23,24 +23,11 @@
 namespace clrt_bench {
 namespace {
 
-struct V {
-  float x, y, z;
-};
-inline V operator+(V a, V b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-inline V operator-(V a, V b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-inline V operator*(float s, V a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-inline float dot(V a, V b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-inline float length(V a) {
-  return std::sqrt(dot(a, a));
-}
+// The float vector of the comparison; its operators are vec3.hpp's.
+using V = clrt::Vector3<float>;
+using clrt::dot;
+using clrt::length;
+
 inline V fv(const clrt::Vec3& v) {
   return {float(v.x), float(v.y), float(v.z)};
 }
