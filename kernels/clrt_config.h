@@ -13,6 +13,8 @@
  *   CLRT_LIGHT_TYPES     with the counts: each light's CLRT_LIGHT_*, "0,1,2"
  *   CLRT_HAS_AMBIENT, CLRT_HAS_POINT, CLRT_HAS_DIRECTIONAL,
  *   CLRT_HAS_SPECULAR, CLRT_HAS_REFLECTIVE  (0/1; generic build: all 1)
+ *   CLRT_BVH             walk the hierarchy (clrt_bvh.h) instead of testing
+ *                        every sphere (the host's Accel, render/bvh.hpp)
  *   CLRT_COUNT_RAYS      write per-pixel ray counters
  *   CLRT_LANES           pixels per work-item: 1 (when absent), 4, 8 or 16;
  *                        the host picks it (default_lanes(), build_options.hpp)

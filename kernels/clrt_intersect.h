@@ -64,10 +64,19 @@ CLRT_INLINE void intersect(const vec3* Op, const vec3* Dp, __global const clrt_s
 #endif
 }
 
+#ifdef CLRT_BVH
+#include "clrt_bvh.h"
+#else
+/* The queries below test every sphere; with -DCLRT_BVH clrt_bvh.h gives the
+ * same answers through the hierarchy (`nodes`, `primitives`, unused here).
+ * `tests` counts the sphere tests per lane. */
+
 /* Closest hit in (tmin, tmax) per lane; the sphere index or -1. */
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
                                       __global const clrt_params* params, __global const clrt_sphere* spheres,
-                                      lreal* t_out) {
+                                      __global const clrt_bvh_node* nodes, __global const int* primitives,
+                                      lreal* t_out, lint* tests) {
+  *tests += (lint)CLRT_SPHERE_COUNT(params);
   lreal closest = REAL_INFINITY;
   lint best = -1;
   CLRT_UNROLL for (int i = 0; i < CLRT_SPHERE_COUNT(params); ++i) {
@@ -88,7 +97,10 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
  * blocker, but only whether one exists matters, so testing stops as soon as
  * every lane that needs the answer (`active`) has found one. */
 CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
-                                  __global const clrt_params* params, __global const clrt_sphere* spheres) {
+                                  __global const clrt_params* params, __global const clrt_sphere* spheres,
+                                  __global const clrt_bvh_node* nodes, __global const int* primitives, lint* tests) {
+  /* counted as every sphere, like the first bounce of the book's loop */
+  *tests += (lint)CLRT_SPHERE_COUNT(params);
   lint blocked = 0;
   for (int i = 0; i < CLRT_SPHERE_COUNT(params); ++i) {
 #ifndef CLRT_SHADOW_ALL_SPHERES /* (measurement knob: no early exit) */
@@ -100,5 +112,6 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
   }
   return blocked;
 }
+#endif /* CLRT_BVH */
 
 #endif /* CLRT_INTERSECT_H */

@@ -61,6 +61,9 @@ typedef int16 lint;
 #endif
 #define ANY(mask) any(mask)
 #define ALL(mask) all(mask)
+#define FIRST_LANE(x) ((x).s0)
+#else
+#define FIRST_LANE(x) (x)
 #endif
 #define MASK_TRUE ((lint)(CLRT_LANES == 1 ? 1 : -1))
 

@@ -85,6 +85,29 @@ typedef struct clrt_ray_counts {
   clrt_i32 sphere_tests;
 } clrt_ray_counts;
 
+/* A node of the bounding volume hierarchy over the scene's primitives
+ * (host/render/bvh.hpp builds it; kernels/clrt_bvh.h walks it). Its box is
+ * padded and rounded outward on the host, so that no rounding of a kernel's
+ * primitive or box test lets the hierarchy change which primitive a ray hits.
+ * A leaf lists `count` (> 0) entries of the primitive list from `first`; an
+ * inner node has its two children at `first` and `first + 1`, and `count` is
+ * -(1 + the axis it was split on), so a ray visits the nearer child first. */
+typedef struct clrt_bvh_node {
+  clrt_f32 lower[3];
+  clrt_i32 first;
+  clrt_f32 upper[3];
+  clrt_i32 count;
+} clrt_bvh_node; /* 32 bytes */
+
+/* Primitive list entries: the primitive's kind in the top bits, its index in
+ * the scene's list of that kind below (spheres only, so far). */
+#define CLRT_PRIMITIVE_SPHERE 0
+#define CLRT_PRIMITIVE_KIND_SHIFT 28
+#define CLRT_PRIMITIVE_INDEX_MASK 0x0fffffff
+/* Deepest leaf the host builds; a walk keeps at most one node per level on
+ * its stack, so CLRT_BVH_MAX_DEPTH entries always suffice. */
+#define CLRT_BVH_MAX_DEPTH 48
+
 /* Every member of every struct above, in declaration order, as
  * FIELD(struct, member): the one list that the host's static_asserts, the
  * kernel's layout probe and the layout test walk. A member added above but
@@ -123,6 +146,10 @@ typedef struct clrt_ray_counts {
   FIELD(clrt_ray_counts, primary)    \
   FIELD(clrt_ray_counts, shadow)     \
   FIELD(clrt_ray_counts, reflection) \
-  FIELD(clrt_ray_counts, sphere_tests)
+  FIELD(clrt_ray_counts, sphere_tests)  \
+  FIELD(clrt_bvh_node, lower)          \
+  FIELD(clrt_bvh_node, first)          \
+  FIELD(clrt_bvh_node, upper)          \
+  FIELD(clrt_bvh_node, count)
 
 #endif /* CLRT_LAYOUT_H */

@@ -46,6 +46,7 @@ CLRT_INLINE void hit_material(lint hit, __global const clrt_params* params, __gl
 CLRT_INLINE lreal compute_lighting(const vec3* point, const vec3* normal, const vec3* view, lreal specular, lint hit,
                                    lint alive, real epsilon, int bounce, __global const clrt_params* params,
                                    __global const clrt_sphere* spheres, __global const clrt_light* lights,
+                                   __global const clrt_bvh_node* nodes, __global const int* primitives,
                                    lint* shadow_mask, lane_ray_counts* counts) {
   const vec3 Pt = *point, N = *normal, V = *view;
   lreal intensity = 0;
@@ -81,8 +82,9 @@ CLRT_INLINE lreal compute_lighting(const vec3* point, const vec3* normal, const 
     tmax = REAL_INFINITY;
 #endif
     COUNT_IN_LANES(counts->shadow, alive, 1);
-    COUNT_IN_LANES(counts->sphere_tests, alive, CLRT_SPHERE_COUNT(params));
-    const lint blocked = any_intersection(&Pt, &L, epsilon, tmax, hit, alive, params, spheres);
+    lint tests = 0;
+    const lint blocked = any_intersection(&Pt, &L, epsilon, tmax, hit, alive, params, spheres, nodes, primitives, &tests);
+    COUNT_IN_LANES(counts->sphere_tests, alive, tests);
     if (bounce == 0 && light_index < 32) *shadow_mask |= (blocked & alive) ? (lint)(int)(1u << light_index) : (lint)0;
     const lint lit = alive & !blocked;
     const lreal n_dot_l = vdot(N, L);

@@ -12,6 +12,7 @@
  *   clrt_lanes.h      the precision's scalar, lane types and mask helpers
  *   clrt_math.h       3-vectors, hi/lo values, per-precision arithmetic
  *   clrt_intersect.h  ray-sphere roots, closest hit and any hit
+ *   clrt_bvh.h        the same queries through the hierarchy (-DCLRT_BVH)
  *   clrt_shade.h      hit material, ComputeLighting, reflected rays
  * This file holds the camera ray, the bounce loop, the unwinding of the
  * stack and the stores. */
@@ -25,7 +26,7 @@
 __kernel void render(__global const clrt_params* params, __global const clrt_sphere* spheres,
                      __global const clrt_light* lights, __global float* out, __global int* aux,
                      __global clrt_ray_counts* ray_counts, const int x0, const int y0, const int tile_w,
-                     const int tile_h) {
+                     const int tile_h, __global const clrt_bvh_node* nodes, __global const int* primitives) {
   const int gx = (int)get_global_id(0), gy = (int)get_global_id(1);
   const int px = gx * CLRT_LANES; /* first pixel of this work-item in the tile */
   if (px >= tile_w || gy >= tile_h) return;
@@ -63,8 +64,9 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
 
   for (int bounce = 0; bounce <= depth; ++bounce) {
     lreal t;
-    const lint hit = closest_intersection(&O, &D, tmin, REAL_INFINITY, self, params, spheres, &t);
-    COUNT_IN_LANES(counts.sphere_tests, alive, CLRT_SPHERE_COUNT(params));
+    lint tests = 0;
+    const lint hit = closest_intersection(&O, &D, tmin, REAL_INFINITY, self, params, spheres, nodes, primitives, &t, &tests);
+    COUNT_IN_LANES(counts.sphere_tests, alive, tests);
     const lint miss = alive & (hit < 0);
     result = vsel(miss, background, result);
     alive &= !miss;
@@ -80,7 +82,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     if (bounce == 0) hit_id = alive ? hit : hit_id;
 
     const lreal intensity = compute_lighting(&Pt, &N, &V, specular, hit, alive, epsilon, bounce, params, spheres,
-                                             lights, &shadow_mask, &counts);
+                                             lights, nodes, primitives, &shadow_mask, &counts);
     const vec3 local_color = vscale(intensity, color);
 #if CLRT_HAS_REFLECTIVE
     const lint stop = bounce >= depth ? alive : alive & (reflective <= 0);

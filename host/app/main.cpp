@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   clrt::add_sweep_command(app);
   clrt::add_accuracy_command(app);
   clrt::add_stability_command(app);
+  clrt::add_generate_command(app);
   clrt::install_signal_cleanup();
   try {
     app.parse(argc, argv);

@@ -43,6 +43,9 @@ void KernelOptions::add(CLI::App* cmd, bool with_variant, bool with_specialize) 
   }
   if (with_specialize)
     cmd->add_flag("--no-specialize", no_specialize, "Build the generic kernel instead of a scene-specialized one");
+  cmd->add_option("--accel", accel,
+                  "auto (default: a bounding volume hierarchy from " + std::to_string(kBvhMinSpheres) +
+                      " spheres on), bvh, or none (test every sphere)");
   cmd->add_flag("--no-ftz", no_ftz, "Do not build with -cl-denorms-are-zero");
   cmd->add_flag("--no-cache", no_cache, "Do not use the program binary cache (build from source, store nothing)");
   cmd->add_flag("--verbose", verbose, "Log build options and program cache use on stderr");
@@ -61,6 +64,7 @@ KernelConfig KernelOptions::config() const {
   c.verbose = verbose;
   c.kernel_dir = kernel_dir;
   c.extra_options = cl_options;
+  c.accel = parse_accel(accel);
   (void)kernel_lanes(c);  // UserError on a lane count no kernel has
   return c;
 }

@@ -39,8 +39,8 @@ struct DeviceOptions {
 };
 
 // How the kernel is built: --precision and --lanes (with_variant),
-// --no-specialize (with_specialize), and --no-ftz, --no-cache, --verbose,
-// --kernel-dir, --cl-options.
+// --no-specialize (with_specialize), and --accel, --no-ftz, --no-cache,
+// --verbose, --kernel-dir, --cl-options.
 struct KernelOptions {
   std::string precision = "robust";
   bool no_specialize = false;
@@ -50,6 +50,7 @@ struct KernelOptions {
   bool verbose = false;   // log build options / cache use on stderr
   std::string kernel_dir;
   std::string cl_options;  // extra build options (development)
+  std::string accel = "auto";
 
   void add(CLI::App* cmd, bool with_variant, bool with_specialize = true);
   // Validates and returns the kernel configuration (UserError otherwise).
@@ -102,5 +103,6 @@ void add_bench_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 void add_accuracy_command(CLI::App& app);
 void add_stability_command(CLI::App& app);
+void add_generate_command(CLI::App& app);
 
 }  // namespace clrt

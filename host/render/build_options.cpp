@@ -67,6 +67,7 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
   if (cfg.precision == Precision::Fast) options.push_back("-cl-fast-relaxed-math");
   if (cfg.count_rays) options.push_back("-DCLRT_COUNT_RAYS");
   if (int lanes = kernel_lanes(cfg); lanes > 1) options.push_back(define("CLRT_LANES", lanes));
+  if (uses_bvh(cfg.accel, features.sphere_count, cfg.precision)) options.push_back("-DCLRT_BVH");
   if (cfg.specialize) add_specialization(features, options);
   if (!cfg.extra_options.empty()) options.push_back(cfg.extra_options);
   return options;

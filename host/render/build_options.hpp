@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cl/device.hpp"
+#include "render/bvh.hpp"
 #include "render/kernel_features.hpp"
 #include "render/precision.hpp"
 #include "scene/scene.hpp"
@@ -21,6 +22,7 @@ struct KernelConfig {
   bool verbose = false;       // log build options and cache use on stderr
   std::string kernel_dir;     // "" = embedded kernels
   std::string extra_options;  // appended verbatim (development)
+  Accel accel = Accel::Auto;  // test every sphere or walk the hierarchy (render/bvh.hpp)
 };
 
 // Pixels per work-item: cfg.lanes if set. The renderer sets it from

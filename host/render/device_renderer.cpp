@@ -16,9 +16,10 @@ namespace {
 template <class T>
 cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::vector<T>& v) {
   // Zero-sized buffers are invalid in OpenCL: keep at least one element.
-  std::vector<T> data = v.empty() ? std::vector<T>(1) : v;
-  cl::Buffer b(ctx, CL_MEM_READ_ONLY, data.size() * sizeof(T));
-  q.enqueueWriteBuffer(b, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+  const T stand_in{};
+  const size_t bytes = std::max<size_t>(1, v.size()) * sizeof(T);
+  cl::Buffer b(ctx, CL_MEM_READ_ONLY, bytes);
+  q.enqueueWriteBuffer(b, CL_TRUE, 0, bytes, v.empty() ? &stand_in : v.data());
   return b;
 }
 
@@ -32,7 +33,7 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
   source_ = load_kernel_source("trace.cl", config_.kernel_dir);
 }
 
-void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth) {
+void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth, const Bvh* bvh) {
   std::string opts = build_options(config_, scene, depth, device_.fp64);
   if (opts != options_ || !kernel_()) {
     BuildStats bs;
@@ -56,6 +57,11 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
   spheres_ = upload(context_, queue_, data.spheres);
   lights_ = upload(context_, queue_, data.lights);
+  if (uses_bvh(config_.accel, scene.spheres.size(), config_.precision) && !bvh)
+    throw std::logic_error("BVH build without its hierarchy");
+  // (one-element stand-ins when the kernel does not walk a hierarchy)
+  nodes_ = upload(context_, queue_, bvh ? bvh->nodes : std::vector<clrt_bvh_node>{});
+  primitives_ = upload(context_, queue_, bvh ? bvh->primitives : std::vector<clrt_i32>{});
   timings_.upload_ms = ms_since(t0);
   width_ = width;
   height_ = height;
@@ -96,6 +102,8 @@ LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst)
   kernel_.setArg(7, cl_int(y0));
   kernel_.setArg(8, cl_int(w));
   kernel_.setArg(9, cl_int(h));
+  kernel_.setArg(10, nodes_);
+  kernel_.setArg(11, primitives_);
   // Each work-item shades kernel_lanes(config_) adjacent pixels of a row.
   const size_t lanes = size_t(kernel_lanes(config_)), gw = (size_t(w) + lanes - 1) / lanes;
   // Always an explicit local size: with NullRange the implementation picks

@@ -11,6 +11,7 @@
 #include "cl/launch_timing.hpp"
 #include "image/image.hpp"
 #include "render/build_options.hpp"
+#include "render/bvh.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
@@ -43,10 +44,12 @@ class DeviceRenderer {
  public:
   DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local = {});
 
-  // Builds the (scene-specialized) program and uploads the scene. Must be
-  // called before render_tile(); calling again with another scene or depth
-  // rebuilds, with the same one reuses the program.
-  void prepare(const Scene& scene, int width, int height, int depth);
+  // Builds the (scene-specialized) program and uploads the scene, and its
+  // hierarchy when the configuration uses one (`bvh`: build_bvh(scene), made
+  // once for every device by the Renderer). Must be called before
+  // render_tile(); calling again with another scene or depth rebuilds, with
+  // the same one reuses the program.
+  void prepare(const Scene& scene, int width, int height, int depth, const Bvh* bvh);
 
   // Resets the ray counts and download time of a frame.
   void begin_frame();
@@ -75,7 +78,7 @@ class DeviceRenderer {
   cl::Program program_;
   cl::Kernel kernel_;
   std::string options_, source_;
-  cl::Buffer params_, spheres_, lights_, colors_, classes_, ray_counters_;
+  cl::Buffer params_, spheres_, lights_, colors_, classes_, ray_counters_, nodes_, primitives_;
   size_t tile_capacity_ = 0;
   int width_ = 0, height_ = 0;
   int default_local_x_ = 1;    // set when the kernel is built

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "render/scene_buffers.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -28,19 +29,30 @@ const std::string& Renderer::options() const {
 }
 
 void Renderer::prepare(const Scene& scene, int width, int height, int depth) {
+  FrameStats stats;
+  std::unique_ptr<Bvh> bvh;
+  if (uses_bvh(settings_.kernel.accel, scene.spheres.size(), settings_.kernel.precision)) {
+    const auto t0 = Clock::now();
+    bvh = std::make_unique<Bvh>(
+        build_bvh(scene, settings_.kernel.precision, packing_origin(scene, settings_.kernel.precision)));
+    stats.bvh = true;
+    stats.bvh_build_ms = ms_since(t0);
+    stats.bvh_bytes = bvh->bytes();
+    stats.bvh_depth = bvh->depth;
+  }
   // One host thread per device beyond the first: builds take seconds.
   std::vector<std::exception_ptr> errors(devices_.size());
   std::vector<std::thread> threads;
   for (size_t i = 1; i < devices_.size(); ++i)
     threads.emplace_back([&, i] {
       try {
-        devices_[i]->prepare(scene, width, height, depth);
+        devices_[i]->prepare(scene, width, height, depth, bvh.get());
       } catch (...) {
         errors[i] = std::current_exception();
       }
     });
   try {
-    devices_[0]->prepare(scene, width, height, depth);
+    devices_[0]->prepare(scene, width, height, depth, bvh.get());
   } catch (...) {
     errors[0] = std::current_exception();
   }
@@ -48,7 +60,7 @@ void Renderer::prepare(const Scene& scene, int width, int height, int depth) {
   for (auto& e : errors)
     if (e) std::rethrow_exception(e);
 
-  stats_ = FrameStats{};
+  stats_ = stats;
   stats_.build_cached = true;
   for (const auto& d : devices_) {
     stats_.build_ms = std::max(stats_.build_ms, d->timings().build_ms);

@@ -29,6 +29,10 @@ struct FrameStats {
   double build_ms = 0;        // longest program build or cache load (they run in parallel)
   bool build_cached = false;  // every device loaded its program from the cache
   double upload_ms = 0;       // longest scene upload
+  bool bvh = false;           // the kernel walks a hierarchy (render/bvh.hpp)
+  double bvh_build_ms = 0;    // its build on the host (once for every device)
+  size_t bvh_bytes = 0;       // its size on each device
+  int bvh_depth = 0;          // its deepest leaf
   double kernel_ms = 0;       // kernel time summed over launches and devices (launch_timing.hpp)
   double download_ms = 0;     // tiles back into host memory, summed over devices
   double wall_ms = 0;         // render(): every launch and download

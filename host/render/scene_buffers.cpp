@@ -17,6 +17,7 @@ static_assert(sizeof(clrt_sphere) == 64, "clrt_sphere size");
 static_assert(sizeof(clrt_light) == 32, "clrt_light size");
 static_assert(sizeof(clrt_params) == 168, "clrt_params size");
 static_assert(sizeof(clrt_ray_counts) == 16, "clrt_ray_counts size");
+static_assert(sizeof(clrt_bvh_node) == 32, "clrt_bvh_node size");
 
 namespace {
 
@@ -71,9 +72,13 @@ bool camera_relative(Precision p) {
   return p == Precision::Robust || p == Precision::Fast;
 }
 
+Vec3 packing_origin(const Scene& scene, Precision p) {
+  return camera_relative(p) ? scene.camera.position : Vec3{};
+}
+
 SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth) {
   SceneData d;
-  const Vec3 shift = camera_relative(precision) ? scene.camera.position : Vec3{};
+  const Vec3 shift = packing_origin(scene, precision);
   clrt_params& p = d.params;
   p.width = width;
   p.height = height;

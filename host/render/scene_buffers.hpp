@@ -19,6 +19,9 @@ struct SceneData {
 // position in double before rounding to float, so geometry near the camera
 // keeps full float precision wherever the scene sits in world space.
 bool camera_relative(Precision p);
+// The point the packed coordinates are relative to: the camera position for
+// camera-relative variants, else the world origin.
+Vec3 packing_origin(const Scene& scene, Precision p);
 
 // The kernel's code (CLRT_LIGHT_*) of a light type: clrt_light.type and the
 // entries of -DCLRT_LIGHT_TYPES.

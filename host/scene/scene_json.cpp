@@ -286,7 +286,7 @@ Scene load_scene(const std::string& path) {
   return parse_scene(text, path);
 }
 
-std::string scene_to_json(const Scene& s) {
+std::string scene_to_json(const Scene& s, JsonStyle style) {
   auto v3 = [](Vec3 v) { return json::array({v.x, v.y, v.z}); };
   json root;
   const auto& r = s.camera.rotation;
@@ -313,7 +313,7 @@ std::string scene_to_json(const Scene& s) {
     if (l.type == LightType::Directional) jl["type"] = "directional", jl["direction"] = v3(l.vec);
     root["lights"].push_back(jl);
   }
-  return root.dump(2);
+  return style == JsonStyle::Pretty ? root.dump(2) : root.dump();
 }
 
 }  // namespace clrt

@@ -19,6 +19,8 @@ constexpr size_t kMaxSceneBytes = size_t(64) << 20;
 // Reads a file and parses it; a missing/unreadable/oversized file is a UserError.
 Scene load_scene(const std::string& path);
 // Serializes a scene back to JSON text (used by generated test suites).
-std::string scene_to_json(const Scene& s);
+// Pretty: two-space indents; compact: no white space (large scenes).
+enum class JsonStyle { Pretty, Compact };
+std::string scene_to_json(const Scene& s, JsonStyle style = JsonStyle::Pretty);
 
 }  // namespace clrt

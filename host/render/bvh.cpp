@@ -1,0 +1,221 @@
+// bvh.cpp - binned-SAH build of the sphere hierarchy, flattened depth-first
+// with each node's two children side by side.
+#include "render/bvh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "util/error.hpp"
+
+namespace clrt {
+
+Accel parse_accel(const std::string& name) {
+  if (name == "auto") return Accel::Auto;
+  if (name == "none") return Accel::None;
+  if (name == "bvh") return Accel::Bvh;
+  throw UserError("--accel: expected auto, bvh or none (got \"" + name.substr(0, 64) + "\")");
+}
+
+std::string accel_name(Accel accel) {
+  switch (accel) {
+    case Accel::Auto:
+      return "auto";
+    case Accel::None:
+      return "none";
+    case Accel::Bvh:
+      return "bvh";
+  }
+  return "auto";  // unreachable: every Accel is listed above
+}
+
+bool uses_bvh(Accel accel, size_t sphere_count, Precision precision) {
+  if (accel == Accel::Auto) return sphere_count >= kBvhMinSpheres && precision != Precision::Naive;
+  return accel == Accel::Bvh;
+}
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct Box {
+  std::array<double, 3> lower{kInfinity, kInfinity, kInfinity};
+  std::array<double, 3> upper{-kInfinity, -kInfinity, -kInfinity};
+
+  void grow(const Box& other) {
+    for (int a = 0; a < 3; ++a) {
+      lower[a] = std::min(lower[a], other.lower[a]);
+      upper[a] = std::max(upper[a], other.upper[a]);
+    }
+  }
+  bool empty() const { return lower[0] > upper[0]; }
+  // Half the surface area (the heuristic compares ratios only).
+  double half_area() const {
+    if (empty()) return 0;
+    const double x = upper[0] - lower[0], y = upper[1] - lower[1], z = upper[2] - lower[2];
+    return x * y + y * z + z * x;
+  }
+};
+
+struct Item {
+  Box box;                         // the sphere's box, padded
+  std::array<double, 3> centroid;  // its centre
+  clrt_i32 entry;                  // kind << shift | index
+};
+
+// Outward rounding to float: the float box contains the double one.
+float round_down(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+float round_up(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+class Builder {
+ public:
+  Builder(std::vector<Item>& items, Bvh& out) : items_(items), out_(out) {}
+
+  void build(size_t node, size_t begin, size_t end, int depth) {
+    Box bounds, centroids;
+    for (size_t i = begin; i < end; ++i) {
+      bounds.grow(items_[i].box);
+      Box point;
+      point.lower = point.upper = items_[i].centroid;
+      centroids.grow(point);
+    }
+    set_box(node, bounds);
+    out_.depth = std::max(out_.depth, depth);
+    const size_t count = end - begin;
+    int axis = -1;
+    size_t middle = begin;
+    if (count > size_t(kBvhLeafSize) && depth < CLRT_BVH_MAX_DEPTH - 1)
+      choose_split(begin, end, bounds, centroids, axis, middle);
+    if (axis < 0) {
+      make_leaf(node, begin, end);
+      return;
+    }
+    const size_t children = out_.nodes.size();
+    out_.nodes.resize(children + 2);
+    out_.nodes[node].first = static_cast<clrt_i32>(children);
+    out_.nodes[node].count = -(axis + 1);
+    build(children, begin, middle, depth + 1);
+    build(children + 1, middle, end, depth + 1);
+  }
+
+ private:
+  // The binned SAH split of [begin, end): sets axis (-1 = a leaf is cheaper
+  // or nothing separates the centroids) and partitions items around middle.
+  void choose_split(size_t begin, size_t end, const Box& bounds, const Box& centroids, int& axis, size_t& middle) {
+    const size_t count = end - begin;
+    double best_cost = kInfinity;
+    int best_axis = -1, best_bin = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double low = centroids.lower[a], extent = centroids.upper[a] - low;
+      if (!(extent > 0)) continue;
+      std::array<Box, kBvhBins> boxes;
+      std::array<size_t, kBvhBins> counts{};
+      for (size_t i = begin; i < end; ++i) {
+        const int b = bin(items_[i].centroid[a], low, extent);
+        boxes[b].grow(items_[i].box);
+        ++counts[b];
+      }
+      // Costs of splitting after bin b: left [0, b], right [b + 1, bins).
+      std::array<double, kBvhBins> right_cost{};
+      Box right;
+      size_t right_count = 0;
+      for (int b = kBvhBins - 1; b > 0; --b) {
+        right.grow(boxes[b]);
+        right_count += counts[b];
+        right_cost[b - 1] = right.half_area() * double(right_count);
+      }
+      Box left;
+      size_t left_count = 0;
+      for (int b = 0; b < kBvhBins - 1; ++b) {
+        left.grow(boxes[b]);
+        left_count += counts[b];
+        if (left_count == 0 || left_count == count) continue;
+        const double cost = left.half_area() * double(left_count) + right_cost[b];
+        if (cost < best_cost) best_cost = cost, best_axis = a, best_bin = b;
+      }
+    }
+    if (best_axis < 0) return;  // every centroid in one place
+    // A leaf costs a test of each primitive for every ray that meets the box;
+    // a split, one box test more and the children's tests.
+    const double leaf_cost = bounds.half_area() * double(count);
+    if (best_cost >= leaf_cost && count <= size_t(4 * kBvhLeafSize)) return;
+    const double low = centroids.lower[best_axis], extent = centroids.upper[best_axis] - low;
+    auto split =
+        std::partition(items_.begin() + std::ptrdiff_t(begin), items_.begin() + std::ptrdiff_t(end),
+                       [&](const Item& item) { return bin(item.centroid[best_axis], low, extent) <= best_bin; });
+    axis = best_axis;
+    middle = size_t(split - items_.begin());
+  }
+
+  static int bin(double value, double low, double extent) {
+    const int b = static_cast<int>(double(kBvhBins) * (value - low) / extent);
+    return std::clamp(b, 0, kBvhBins - 1);
+  }
+
+  void set_box(size_t node, const Box& box) {
+    clrt_bvh_node& n = out_.nodes[node];
+    for (int a = 0; a < 3; ++a) {
+      n.lower[a] = box.empty() ? 0.0f : round_down(box.lower[a]);
+      n.upper[a] = box.empty() ? 0.0f : round_up(box.upper[a]);
+    }
+  }
+
+  void make_leaf(size_t node, size_t begin, size_t end) {
+    out_.nodes[node].first = static_cast<clrt_i32>(out_.primitives.size());
+    out_.nodes[node].count = static_cast<clrt_i32>(end - begin);
+    for (size_t i = begin; i < end; ++i) out_.primitives.push_back(items_[i].entry);
+  }
+
+  std::vector<Item>& items_;
+  Bvh& out_;
+};
+
+}  // namespace
+
+Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin) {
+  if (scene.spheres.size() > size_t(CLRT_PRIMITIVE_INDEX_MASK))
+    throw UserError("scene has " + std::to_string(scene.spheres.size()) + " spheres; the hierarchy holds at most " +
+                    std::to_string(CLRT_PRIMITIVE_INDEX_MASK));
+  // The scene's extent, camera included: the distance scale of every ray.
+  const Vec3 eye = scene.camera.position - origin;
+  double extent = std::max({std::fabs(eye.x), std::fabs(eye.y), std::fabs(eye.z)});
+  for (const Sphere& s : scene.spheres) {
+    const Vec3 c = s.center - origin;
+    extent = std::max({extent, std::fabs(c.x) + s.radius, std::fabs(c.y) + s.radius, std::fabs(c.z) + s.radius});
+  }
+  Bvh bvh;
+  const int padding_exponent = precision == Precision::Fp64 ? -40 : precision == Precision::Fast ? -12 : -16;
+  bvh.padding = std::ldexp(extent, padding_exponent);
+  std::vector<Item> items(scene.spheres.size());
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    const Sphere& s = scene.spheres[i];
+    const Vec3 relative = s.center - origin;  // as pack_scene() computes it
+    const std::array<double, 3> c{relative.x, relative.y, relative.z};
+    // The naive variant's grazing hits, ~2^-22 E^2 / r from the sphere.
+    const double pad =
+        precision == Precision::Naive ? bvh.padding + std::ldexp(extent * extent / s.radius, -22) : bvh.padding;
+    // (each step rounded outward: the box holds the exact one)
+    for (int a = 0; a < 3; ++a) {
+      items[i].box.lower[a] = std::nextafter(std::nextafter(c[a] - s.radius, -kInfinity) - pad, -kInfinity);
+      items[i].box.upper[a] = std::nextafter(std::nextafter(c[a] + s.radius, kInfinity) + pad, kInfinity);
+    }
+    items[i].centroid = c;
+    items[i].entry =
+        static_cast<clrt_i32>(CLRT_PRIMITIVE_SPHERE << CLRT_PRIMITIVE_KIND_SHIFT) | static_cast<clrt_i32>(i);
+  }
+  bvh.nodes.reserve(2 * items.size() + 1);
+  bvh.nodes.resize(1);
+  Builder(items, bvh).build(0, 0, items.size(), 0);
+  return bvh;
+}
+
+}  // namespace clrt

@@ -1,0 +1,58 @@
+// bvh.hpp - the bounding volume hierarchy over a scene's spheres, built on
+// the host and walked by the kernel (kernels/clrt_bvh.h) in place of testing
+// every sphere: binned surface-area heuristic, at most kBvhLeafSize
+// primitives per leaf where a split pays, never deeper than
+// CLRT_BVH_MAX_DEPTH.
+//
+// The boxes are padded and rounded outward so that the hierarchy never
+// changes which sphere a ray hits, at any precision variant
+// (tests/render/test_bvh.cpp compares BVH and brute-force images). A float
+// sphere test can report a hit only for a ray that passes within its error
+// of the sphere; with E the scene's extent (camera included, the scale of
+// every ray's distance to a sphere):
+//  - stable, robust (perpendicular-distance discriminant): a few ulps of E,
+//    padded by 2^-16 E; fp64 by 2^-40 E;
+//  - fast (native square root and division, whose accuracy the device
+//    chooses): padded by 2^-12 E;
+//  - naive (the book's b^2 - 4ac): a few ulps of |O - C|^2 in c, so grazing
+//    rays "hit" up to ~2^-22 E^2 / r away from a sphere of radius r: padded by
+//    that too. Its boxes are large; Accel::Auto keeps testing every sphere.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "clrt_layout.h"
+#include "render/precision.hpp"
+#include "scene/scene.hpp"
+
+namespace clrt {
+
+// Which spheres a ray tests: all of them, or those the hierarchy reaches.
+enum class Accel { Auto, None, Bvh };
+// "auto", "none", "bvh"; UserError naming --accel otherwise.
+Accel parse_accel(const std::string& name);
+std::string accel_name(Accel accel);
+
+// Auto uses the hierarchy from this many spheres on: below it testing every
+// sphere is faster (measured, docs/performance.md "BVH").
+constexpr size_t kBvhMinSpheres = 32;
+bool uses_bvh(Accel accel, size_t sphere_count, Precision precision);
+
+constexpr int kBvhLeafSize = 4;  // a leaf of more only where no split pays (or at the depth limit)
+constexpr int kBvhBins = 16;     // SAH candidates per axis
+
+struct Bvh {
+  std::vector<clrt_bvh_node> nodes;  // nodes[0] is the root
+  std::vector<clrt_i32> primitives;  // the leaves' entries (kind << shift | index)
+  int depth = 0;                     // deepest leaf, the root being 0
+  double padding = 0;                // added to every sphere's box, in scene units (naive: at least)
+  size_t bytes() const { return nodes.size() * sizeof(clrt_bvh_node) + primitives.size() * sizeof(clrt_i32); }
+};
+
+// The hierarchy of `scene`'s spheres (empty scene: one empty leaf), in
+// coordinates relative to `origin`, as the kernel sees them
+// (render/scene_buffers.hpp: packing_origin()).
+Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin = {});
+
+}  // namespace clrt

@@ -1,0 +1,208 @@
+// test_bvh.cpp - the sphere hierarchy: its structure (host only), and images
+// through it equal to the images that test every sphere, byte for byte, at
+// every precision variant, on scenes of 1 to 10 000 spheres and on the
+// stiff and extreme cases of the stability suite.
+#include <catch2/catch.hpp>
+#include <cstring>
+#include <vector>
+
+#include "eval/stability.hpp"
+#include "render/bvh.hpp"
+#include "render/precision_support.hpp"
+#include "render/renderer.hpp"
+#include "scene/random_scene.hpp"
+#include "test_util.hpp"
+#include "util/error.hpp"
+
+using namespace clrt;
+
+namespace {
+
+Scene random_spheres(size_t count, uint64_t seed = 7) {
+  RandomSceneSettings settings;
+  settings.count = count;
+  settings.seed = seed;
+  return random_scene(settings);
+}
+
+// Every sphere in exactly one leaf; every box holds what is below it (the
+// float box contains the sphere's double box); children side by side; no
+// leaf deeper than the kernel's stack allows.
+void check_structure(const Scene& scene, const Bvh& bvh) {
+  REQUIRE(!bvh.nodes.empty());
+  CHECK(bvh.depth < CLRT_BVH_MAX_DEPTH);
+  std::vector<int> seen(scene.spheres.size(), 0);
+  struct Visit {
+    int node, depth;
+  };
+  std::vector<Visit> todo{{0, 0}};
+  size_t visited = 0;
+  while (!todo.empty()) {
+    const Visit v = todo.back();
+    todo.pop_back();
+    ++visited;
+    REQUIRE(v.node >= 0);
+    REQUIRE(size_t(v.node) < bvh.nodes.size());
+    const clrt_bvh_node& n = bvh.nodes[size_t(v.node)];
+    CHECK(v.depth <= bvh.depth);
+    if (n.count < 0) {
+      CHECK(n.count >= -3);  // the split axis
+      REQUIRE(size_t(n.first) + 1 < bvh.nodes.size());
+      for (int child = n.first; child <= n.first + 1; ++child) {
+        const clrt_bvh_node& c = bvh.nodes[size_t(child)];
+        for (int a = 0; a < 3; ++a) {
+          CHECK(n.lower[a] <= c.lower[a]);
+          CHECK(c.upper[a] <= n.upper[a]);
+        }
+        todo.push_back({child, v.depth + 1});
+      }
+      continue;
+    }
+    for (int k = n.first; k < n.first + n.count; ++k) {
+      REQUIRE(size_t(k) < bvh.primitives.size());
+      const clrt_i32 entry = bvh.primitives[size_t(k)];
+      CHECK((entry >> CLRT_PRIMITIVE_KIND_SHIFT) == CLRT_PRIMITIVE_SPHERE);
+      const size_t i = size_t(entry & CLRT_PRIMITIVE_INDEX_MASK);
+      REQUIRE(i < scene.spheres.size());
+      ++seen[i];
+      const Sphere& s = scene.spheres[i];
+      const double c[3] = {s.center.x, s.center.y, s.center.z};
+      for (int a = 0; a < 3; ++a) {
+        INFO("sphere " << i << " axis " << a << " centre " << c[a] << " radius " << s.radius << " padding "
+                       << bvh.padding);
+        CHECK(double(n.lower[a]) <= c[a] - s.radius - bvh.padding);
+        CHECK(c[a] + s.radius + bvh.padding <= double(n.upper[a]));
+      }
+    }
+  }
+  CHECK(visited == bvh.nodes.size());  // no unreachable node
+  for (size_t i = 0; i < seen.size(); ++i) {
+    INFO("sphere " << i);
+    CHECK(seen[i] == 1);
+  }
+}
+
+// Byte for byte: colours (bit patterns, so NaN equals NaN), hit ids and
+// shadow bits.
+size_t pixels_differing(const Image& a, const Image& b) {
+  REQUIRE(a.rgb.size() == b.rgb.size());
+  size_t n = 0;
+  for (size_t p = 0; p < a.pixels(); ++p)
+    n += std::memcmp(&a.rgb[3 * p], &b.rgb[3 * p], 3 * sizeof(double)) != 0 || a.hit[p] != b.hit[p] ||
+         a.shadowed[p] != b.shadowed[p];
+  return n;
+}
+
+Image render(const Scene& scene, int width, int height, int depth, KernelConfig config, Accel accel,
+             FrameStats* stats = nullptr) {
+  config.accel = accel;
+  Renderer renderer = clrt_test::renderer(config);
+  renderer.prepare(scene, width, height, depth);
+  Image image = renderer.render();
+  if (stats) *stats = renderer.stats();
+  return image;
+}
+
+}  // namespace
+
+TEST_CASE("the hierarchy holds every sphere once, in boxes that hold them", "[bvh]") {
+  for (size_t count : {0, 1, 2, 5, 17, 100, 3000}) {
+    INFO(count << " spheres");
+    const Scene scene = random_spheres(count);
+    const Bvh bvh = build_bvh(scene, Precision::Robust);
+    check_structure(scene, bvh);
+    CHECK(bvh.bytes() == bvh.nodes.size() * 32 + bvh.primitives.size() * 4);
+  }
+  for (const auto& path : clrt_test::shipped_scenes()) {
+    INFO(path);
+    const Scene scene = load_scene(path);
+    for (Precision p : all_precisions()) check_structure(scene, build_bvh(scene, p));
+  }
+}
+
+TEST_CASE("the hierarchy stays shallow where spheres coincide", "[bvh]") {
+  // 200 copies of one sphere: nothing separates them, so one leaf.
+  Scene scene = random_spheres(1);
+  scene.spheres.assign(200, scene.spheres[0]);
+  const Bvh bvh = build_bvh(scene, Precision::Robust);
+  check_structure(scene, bvh);
+  CHECK(bvh.depth == 0);
+  // A line of spheres a factor 2 apart (a deep, unbalanced split sequence).
+  Scene line = random_spheres(0);
+  for (int i = 0; i < 60; ++i) line.spheres.push_back({{std::ldexp(1.0, i - 20), 1, 5}, 1e-7, {1, 2, 3}, -1, 0});
+  const Bvh deep = build_bvh(line, Precision::Robust);
+  check_structure(line, deep);
+}
+
+TEST_CASE("--accel: auto uses the hierarchy from kBvhMinSpheres on", "[bvh]") {
+  CHECK(parse_accel("auto") == Accel::Auto);
+  CHECK(parse_accel("bvh") == Accel::Bvh);
+  CHECK(parse_accel("none") == Accel::None);
+  CHECK_THROWS_AS(parse_accel("kd-tree"), UserError);
+  CHECK_FALSE(uses_bvh(Accel::Auto, kBvhMinSpheres - 1, Precision::Robust));
+  CHECK(uses_bvh(Accel::Auto, kBvhMinSpheres, Precision::Robust));
+  CHECK_FALSE(uses_bvh(Accel::Auto, 1000000, Precision::Naive));  // its boxes are padded too far to pay
+  CHECK(uses_bvh(Accel::Bvh, 1, Precision::Naive));
+  CHECK_FALSE(uses_bvh(Accel::None, 1000000, Precision::Robust));
+  for (Accel a : {Accel::Auto, Accel::None, Accel::Bvh}) CHECK(parse_accel(accel_name(a)) == a);
+  // The book's scene keeps testing every sphere.
+  KernelConfig config;
+  const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
+  CHECK(build_options(config, demo, 3, false).find("CLRT_BVH") == std::string::npos);
+  CHECK(build_options(config, random_spheres(100), 3, false).find("-DCLRT_BVH") != std::string::npos);
+}
+
+TEST_CASE("BVH images equal brute-force images at every precision (1 to 10 000 spheres)", "[opencl][bvh]") {
+  const DeviceInfo device = clrt_test::test_device();
+  for (size_t count : {1, 10, 100, 1000, 10000}) {
+    const Scene scene = random_spheres(count, 11 + count);
+    const int width = count >= 10000 ? 48 : 80, height = count >= 10000 ? 36 : 60;
+    for (Precision p : all_precisions()) {
+      if (!unsupported_reason(p, device).empty()) continue;
+      // The generic kernel at every variant; the specialized one (lanes) at
+      // the default variant and naive, the one with the largest errors.
+      for (bool specialize : {false, true}) {
+        if (specialize && p != Precision::Robust && p != Precision::Naive) continue;
+        INFO(count << " spheres, " << precision_name(p) << (specialize ? ", specialized" : ", generic"));
+        KernelConfig config;
+        config.precision = p;
+        config.specialize = specialize;
+        FrameStats with_bvh;
+        const Image a = render(scene, width, height, 3, config, Accel::Bvh, &with_bvh);
+        const Image b = render(scene, width, height, 3, config, Accel::None);
+        CHECK(with_bvh.bvh);
+        CHECK(pixels_differing(a, b) == 0);
+      }
+    }
+  }
+}
+
+TEST_CASE("BVH images equal brute-force images on the stiff and extreme cases", "[opencl][bvh][stability]") {
+  const DeviceInfo device = clrt_test::test_device();
+  for (const StabilityCase& c : stability_suite()) {
+    for (Precision p : all_precisions()) {
+      if (!unsupported_reason(p, device).empty()) continue;
+      INFO(c.name() << ", " << precision_name(p));
+      KernelConfig config;
+      config.precision = p;
+      config.specialize = false;  // one program per variant for the whole suite
+      CHECK(pixels_differing(render(c.scene, 48, 36, c.depth, config, Accel::Bvh),
+                             render(c.scene, 48, 36, c.depth, config, Accel::None)) == 0);
+    }
+  }
+}
+
+TEST_CASE("the ray counters count the spheres a walk tests", "[opencl][bvh][rays]") {
+  const Scene scene = random_spheres(2000, 3);
+  KernelConfig config;
+  config.count_rays = true;
+  FrameStats with_bvh, without;
+  render(scene, 64, 48, 2, config, Accel::Bvh, &with_bvh);
+  render(scene, 64, 48, 2, config, Accel::None, &without);
+  // The same rays, and far fewer sphere tests than every sphere per ray.
+  CHECK(with_bvh.rays.primary == without.rays.primary);
+  CHECK(with_bvh.rays.shadow == without.rays.shadow);
+  CHECK(with_bvh.rays.reflection == without.rays.reflection);
+  CHECK(with_bvh.rays.sphere_tests > 0);
+  CHECK(with_bvh.rays.sphere_tests * 10 < without.rays.sphere_tests);
+}
