@@ -73,8 +73,8 @@ CLRT_INLINE int entry_roots(int entry, const vec3* O, const vec3* D, lint self, 
 /* Closest hit in (tmin, tmax) per lane: the sphere index or -1. */
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
                                       __global const clrt_params* params, __global const clrt_sphere* spheres,
-                                      __global const clrt_bvh_node* nodes, __global const int* primitives,
-                                      lreal* t_out, lint* tests) {
+                                      __global const clrt_bvh_node* nodes, __global const int* primitives, lreal* t_out,
+                                      lint* tests) {
   const vec3 inverse = inverse_direction(D);
   lreal closest = REAL_INFINITY;
   lint best = -1;

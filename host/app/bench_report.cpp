@@ -53,6 +53,10 @@ nlohmann::json bench_json(const BenchResult& r) {
           {"download", stats_json(r.download)},
           {"download_ms", r.download.median},
           {"end_to_end_ms", r.end_to_end_ms},
+          {"accel", r.bvh ? "bvh" : "none"},
+          {"bvh_build_ms", r.bvh_build_ms},
+          {"bvh_bytes", r.bvh_bytes},
+          {"bvh_depth", r.bvh_depth},
           {"rays_primary", r.rays.primary},
           {"rays_shadow", r.rays.shadow},
           {"rays_reflection", r.rays.reflection},
@@ -94,6 +98,11 @@ void print_bench(const BenchResult& r) {
   }
   std::printf("end to end     %.1f ms (N=1: new renderer, build + upload + first frame; its kernel %.2f ms)\n",
               r.end_to_end_ms, r.first_launch_ms);
+  if (r.bvh)
+    std::printf("hierarchy      built in %.1f ms (part of end to end), %.2f MiB, %d levels\n", r.bvh_build_ms,
+                double(r.bvh_bytes) / (1 << 20), r.bvh_depth + 1);
+  else
+    std::printf("hierarchy      none: every ray tests every sphere (--accel)\n");
   std::printf("rays           %llu total: %llu primary, %llu shadow, %llu reflection; %llu ray-sphere tests\n",
               (unsigned long long)r.rays.total(), (unsigned long long)r.rays.primary, (unsigned long long)r.rays.shadow,
               (unsigned long long)r.rays.reflection, (unsigned long long)r.rays.sphere_tests);

@@ -37,6 +37,9 @@ void add_render_command(CLI::App& app) {
                    o->image.width, o->image.height, depth, run.device.c_str(), run.frame.kernel_ms,
                    time_source_note(run.frame.host_timed_launches, run.frame.launches).c_str(), run.frame.build_ms,
                    run.frame.build_cached ? " (cached)" : "");
+    if (o->engine == "opencl" && run.frame.bvh)
+      std::fprintf(report, "%s: hierarchy built in %.1f ms, %.2f MiB, %d levels\n", out->c_str(),
+                   run.frame.bvh_build_ms, double(run.frame.bvh_bytes) / (1 << 20), run.frame.bvh_depth + 1);
     if (run.frame.shares.size() > 1) print_shares(run.frame.shares, report);
     if (o->engine != "opencl")
       std::fprintf(report, "%s: %dx%d depth %d with the reference renderer: %.1f ms\n", out->c_str(), o->image.width,

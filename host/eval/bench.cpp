@@ -64,6 +64,10 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   r.image = cl.render();
   r.end_to_end_ms = ms_since(t0);
   r.first_launch_ms = cl.stats().kernel_ms;
+  r.bvh = cl.stats().bvh;
+  r.bvh_build_ms = cl.stats().bvh_build_ms;
+  r.bvh_bytes = cl.stats().bvh_bytes;
+  r.bvh_depth = cl.stats().bvh_depth;
   r.build_cold = summarize(cold);
   r.build_warm = summarize(warm);
   r.upload = summarize(uploads);

@@ -46,9 +46,13 @@ struct BenchResult {
   int width = 0, height = 0, depth = 0, repeat = 0;
   Stats build_cold, build_warm;  // ms per build of every device (the longest, they run in parallel)
   bool build_warm_cached = false;
-  Stats upload;                               // ms, scene buffers (one per build above)
-  double end_to_end_ms = 0;                   // N=1: new renderer, (warm) build + upload + first frame
-  double first_launch_ms = 0;                 // N=1: kernel time of that first frame
+  Stats upload;                // ms, scene buffers (one per build above)
+  double end_to_end_ms = 0;    // N=1: new renderer, (warm) build + upload + first frame
+  double first_launch_ms = 0;  // N=1: kernel time of that first frame
+  bool bvh = false;            // the kernel walks a hierarchy (render/bvh.hpp)
+  double bvh_build_ms = 0;     // N=1: its build on the host, part of end_to_end_ms
+  size_t bvh_bytes = 0;
+  int bvh_depth = 0;
   std::vector<double> kernel_ms;              // each timed frame: kernel time summed over launches (and devices)
   Stats kernel;                               // of kernel_ms
   int launches = 0, host_timed_launches = 0;  // over the timed frames (launch_timing.hpp)
