@@ -6,27 +6,29 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "util/error.hpp"
 
 namespace clrt {
 
+namespace {
+
+// Each mode and its --accel name.
+constexpr std::pair<Accel, const char*> kAccelNames[] = {
+    {Accel::Auto, "auto"}, {Accel::None, "none"}, {Accel::Bvh, "bvh"}};
+
+}  // namespace
+
 Accel parse_accel(const std::string& name) {
-  if (name == "auto") return Accel::Auto;
-  if (name == "none") return Accel::None;
-  if (name == "bvh") return Accel::Bvh;
+  for (const auto& [accel, accel_text] : kAccelNames)
+    if (name == accel_text) return accel;
   throw UserError("--accel: expected auto, bvh or none (got \"" + name.substr(0, 64) + "\")");
 }
 
 std::string accel_name(Accel accel) {
-  switch (accel) {
-    case Accel::Auto:
-      return "auto";
-    case Accel::None:
-      return "none";
-    case Accel::Bvh:
-      return "bvh";
-  }
+  for (const auto& [mode, text] : kAccelNames)
+    if (mode == accel) return text;
   return "auto";  // unreachable: every Accel is listed above
 }
 
