@@ -40,22 +40,24 @@ void Renderer::prepare(const Scene& scene, int width, int height, int depth) {
     stats.bvh_bytes = bvh->bytes();
     stats.bvh_depth = bvh->depth;
   }
-  // One host thread per device beyond the first: builds take seconds.
+  // One host thread per device when there are several: builds take seconds.
+  // (Not the calling thread for any of them: PoCL loads a library per
+  // compiled kernel into the building thread's dynamic TLS, and with two
+  // contexts LeakSanitizer's exit-time scan of the main thread's stale DTLS
+  // crashes; docs/sanitizers.md.)
   std::vector<std::exception_ptr> errors(devices_.size());
   std::vector<std::thread> threads;
-  for (size_t i = 1; i < devices_.size(); ++i)
-    threads.emplace_back([&, i] {
-      try {
-        devices_[i]->prepare(scene, width, height, depth, bvh.get());
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    });
-  try {
-    devices_[0]->prepare(scene, width, height, depth, bvh.get());
-  } catch (...) {
-    errors[0] = std::current_exception();
-  }
+  auto prepare_device = [&](size_t i) {
+    try {
+      devices_[i]->prepare(scene, width, height, depth, bvh.get());
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  };
+  if (devices_.size() == 1)
+    prepare_device(0);
+  else
+    for (size_t i = 0; i < devices_.size(); ++i) threads.emplace_back(prepare_device, i);
   for (auto& t : threads) t.join();
   for (auto& e : errors)
     if (e) std::rethrow_exception(e);
