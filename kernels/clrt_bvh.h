@@ -31,8 +31,8 @@ CLRT_INLINE vec3 inverse_direction(const vec3* D) {
             1 / ((*D).z == 0 ? copysign(tiny, (*D).z) : (*D).z));
 }
 
-/* Lanes whose ray may meet the box within (tmin, limit); `enter` gets the
- * widened entry distance. */
+/* Lanes whose ray may meet the box within (tmin, limit), the entry and exit
+ * distances widened by CLRT_BOX_SLACK. */
 CLRT_INLINE lint box_overlap(__global const clrt_bvh_node* node, const vec3* O, const vec3* inverse, real tmin,
                              lreal limit) {
   const lreal x0 = ((real)node->lower[0] - (*O).x) * (*inverse).x, x1 = ((real)node->upper[0] - (*O).x) * (*inverse).x;

@@ -59,9 +59,12 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   lights_ = upload(context_, queue_, data.lights);
   if (uses_bvh(config_.accel, scene.spheres.size(), config_.precision) && !bvh)
     throw std::logic_error("BVH build without its hierarchy");
-  // (one-element stand-ins when the kernel does not walk a hierarchy)
-  nodes_ = upload(context_, queue_, bvh ? bvh->nodes : std::vector<clrt_bvh_node>{});
-  primitives_ = upload(context_, queue_, bvh ? bvh->primitives : std::vector<clrt_i32>{});
+  // (one-element stand-ins when the kernel does not walk a hierarchy; both
+  // branches lvalues, so the hierarchy is uploaded without a copy)
+  const std::vector<clrt_bvh_node> no_nodes;
+  const std::vector<clrt_i32> no_primitives;
+  nodes_ = upload(context_, queue_, bvh ? bvh->nodes : no_nodes);
+  primitives_ = upload(context_, queue_, bvh ? bvh->primitives : no_primitives);
   timings_.upload_ms = ms_since(t0);
   width_ = width;
   height_ = height;
