@@ -31,6 +31,12 @@ CLRT_INLINE vec3 inverse_direction(const vec3* D) {
             1 / ((*D).z == 0 ? copysign(tiny, (*D).z) : (*D).z));
 }
 
+/* min and max as selects: no operand is NaN here (finite box corners and
+ * origins times nonzero finite reciprocals), and PoCL's fmin/fmax keep NaN rules
+ * that cost ~12% of a frame (docs/performance.md). */
+#define BMIN(a, b) ((a) < (b) ? (a) : (b))
+#define BMAX(a, b) ((a) > (b) ? (a) : (b))
+
 /* Lanes whose ray may meet the box within (tmin, limit), the entry and exit
  * distances widened by CLRT_BOX_SLACK. */
 CLRT_INLINE lint box_overlap(__global const clrt_bvh_node* node, const vec3* O, const vec3* inverse, real tmin,
@@ -38,8 +44,8 @@ CLRT_INLINE lint box_overlap(__global const clrt_bvh_node* node, const vec3* O, 
   const lreal x0 = ((real)node->lower[0] - (*O).x) * (*inverse).x, x1 = ((real)node->upper[0] - (*O).x) * (*inverse).x;
   const lreal y0 = ((real)node->lower[1] - (*O).y) * (*inverse).y, y1 = ((real)node->upper[1] - (*O).y) * (*inverse).y;
   const lreal z0 = ((real)node->lower[2] - (*O).z) * (*inverse).z, z1 = ((real)node->upper[2] - (*O).z) * (*inverse).z;
-  lreal enter = fmax(fmax(fmin(x0, x1), fmin(y0, y1)), fmin(z0, z1));
-  lreal leave = fmin(fmin(fmax(x0, x1), fmax(y0, y1)), fmax(z0, z1));
+  lreal enter = BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMIN(z0, z1));
+  lreal leave = BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMAX(z0, z1));
   const lreal slack = (fabs(enter) + fabs(leave)) * CLRT_BOX_SLACK;
   enter -= slack;
   leave += slack;
@@ -82,7 +88,7 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
   int top = 0, index = 0;
   for (;;) {
     __global const clrt_bvh_node* node = &nodes[index];
-    if (ANY(box_overlap(node, O, &inverse, tmin, fmin(closest, (lreal)tmax)))) {
+    if (ANY(box_overlap(node, O, &inverse, tmin, BMIN(closest, (lreal)tmax)))) {
       if (node->count < 0) {
         index = descend(node, D, stack, &top);
         continue;

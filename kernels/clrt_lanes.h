@@ -65,6 +65,22 @@ typedef int16 lint;
 #else
 #define FIRST_LANE(x) (x)
 #endif
+/* The smallest of the lanes of a lint. */
+#if CLRT_LANES == 1
+#define LANE_MIN(x) (x)
+#elif CLRT_LANES == 4
+#define LANE_MIN(x) lane_min4(x)
+#elif CLRT_LANES == 8
+#define LANE_MIN(x) lane_min4(min((x).lo, (x).hi))
+#else
+#define LANE_MIN(x) lane_min4(min(min((x).lo.lo, (x).lo.hi), min((x).hi.lo, (x).hi.hi)))
+#endif
+#if CLRT_LANES > 1
+inline int lane_min4(int4 x) {
+  const int2 m = min(x.lo, x.hi);
+  return min(m.x, m.y);
+}
+#endif
 #define MASK_TRUE ((lint)(CLRT_LANES == 1 ? 1 : -1))
 
 /* Bit casts and the truncating conversion, per lane. */

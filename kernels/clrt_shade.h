@@ -18,19 +18,32 @@ __constant int clrt_light_types[CLRT_N_LIGHTS] = {CLRT_LIGHT_TYPES};
 #endif
 
 /* The hit sphere's centre, colour, specular exponent and reflectivity, per
- * lane (`hit` is each lane's sphere index): lanes may hit different spheres,
- * so every sphere is read (a uniform load) and selected per lane. */
+ * lane (`hit` is each lane's sphere index, -1 for none: zeros). Lanes may
+ * hit different spheres. Testing every sphere, each one is read (a uniform
+ * load) and selected per lane: few spheres, no gathers. With the hierarchy
+ * that loop would cost as much as testing every sphere, so each distinct
+ * index among the lanes is read once (one pass per sphere the lanes hit,
+ * at most CLRT_LANES). */
 CLRT_INLINE void hit_material(lint hit, __global const clrt_params* params, __global const clrt_sphere* spheres,
                               vec3* center_out, vec3* color_out, lreal* specular_out, lreal* reflective_out) {
   vec3 C = v3(0, 0, 0), color = v3(0, 0, 0);
   lreal specular = 0, reflective = 0;
+#ifdef CLRT_BVH
+  lint pending = hit >= 0;
+  while (ANY(pending)) {
+    const int i = LANE_MIN(pending ? hit : (lint)INT_MAX);
+#else
   for (int i = 0; i < CLRT_SPHERE_COUNT(params); ++i) {
+#endif
     __global const clrt_sphere* sphere = &spheres[i];
     lint is_hit = hit == i;
     C = vsel(is_hit, VEC3_FROM_HI_LO(sphere->center, sphere->center_lo), C);
     color = vsel(is_hit, v3(sphere->color[0], sphere->color[1], sphere->color[2]), color);
     specular = is_hit ? (lreal)sphere->specular : specular;
     reflective = is_hit ? (lreal)sphere->reflective : reflective;
+#ifdef CLRT_BVH
+    pending = pending & !is_hit;
+#endif
   }
   *center_out = C;
   *color_out = color;
@@ -83,7 +96,8 @@ CLRT_INLINE lreal compute_lighting(const vec3* point, const vec3* normal, const 
 #endif
     COUNT_IN_LANES(counts->shadow, alive, 1);
     lint tests = 0;
-    const lint blocked = any_intersection(&Pt, &L, epsilon, tmax, hit, alive, params, spheres, nodes, primitives, &tests);
+    const lint blocked =
+        any_intersection(&Pt, &L, epsilon, tmax, hit, alive, params, spheres, nodes, primitives, &tests);
     COUNT_IN_LANES(counts->sphere_tests, alive, tests);
     if (bounce == 0 && light_index < 32) *shadow_mask |= (blocked & alive) ? (lint)(int)(1u << light_index) : (lint)0;
     const lint lit = alive & !blocked;

@@ -186,6 +186,20 @@ TEST_CASE("BVH images equal brute-force images at every precision (1 to 10 000 s
   }
 }
 
+TEST_CASE("BVH images equal brute-force images at every lane count", "[opencl][bvh]") {
+  // The hierarchy reads each hit sphere's material once per distinct index
+  // among the lanes (a reduction whose code differs per lane count).
+  const Scene scene = random_spheres(300, 17);
+  for (int lanes : {1, 4, 8, 16}) {
+    INFO(lanes << " lanes");
+    KernelConfig config;
+    config.lanes = lanes;
+    const Image a = render(scene, 80, 60, 3, config, Accel::Bvh);
+    const Image b = render(scene, 80, 60, 3, config, Accel::None);
+    CHECK(pixels_differing(a, b) == 0);
+  }
+}
+
 TEST_CASE("BVH images equal brute-force images on the stiff and extreme cases", "[opencl][bvh][stability]") {
   const DeviceInfo device = clrt_test::test_device();
   for (const StabilityCase& c : stability_suite()) {
