@@ -52,7 +52,9 @@ struct Bvh {
 
 // The hierarchy of `scene`'s spheres (empty scene: one empty leaf), in
 // coordinates relative to `origin`, as the kernel sees them
-// (render/scene_buffers.hpp: packing_origin()).
-Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin = {});
+// (render/scene_buffers.hpp: packing_origin()). Large subtrees are built on
+// up to `threads` threads (0: one per hardware thread); the result is the
+// same for every thread count.
+Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin = {}, int threads = 0);
 
 }  // namespace clrt

@@ -120,6 +120,22 @@ TEST_CASE("the hierarchy holds every sphere once, in boxes that hold them", "[bv
   }
 }
 
+TEST_CASE("the hierarchy is the same on any number of threads", "[bvh]") {
+  // 40 000 spheres: subtrees of more than kParallelMinItems (8 192) spheres
+  // on both sides of the first splits, so the threads do take parts.
+  const Scene scene = random_spheres(40000, 5);
+  const Bvh one = build_bvh(scene, Precision::Robust, {}, 1);
+  check_structure(scene, one);
+  for (int threads : {2, 3, 8}) {
+    INFO(threads << " threads");
+    const Bvh many = build_bvh(scene, Precision::Robust, {}, threads);
+    CHECK(many.depth == one.depth);
+    CHECK(many.primitives == one.primitives);
+    REQUIRE(many.nodes.size() == one.nodes.size());
+    CHECK(std::memcmp(many.nodes.data(), one.nodes.data(), one.nodes.size() * sizeof(clrt_bvh_node)) == 0);
+  }
+}
+
 TEST_CASE("the hierarchy stays shallow where spheres coincide", "[bvh]") {
   // 200 copies of one sphere: nothing separates them, so one leaf.
   Scene scene = random_spheres(1);
