@@ -16,12 +16,18 @@ void add_bench_command(CLI::App& app) {
   auto repeat = std::make_shared<int>(5);
   auto as_json = std::make_shared<bool>(false);
   auto no_omp = std::make_shared<bool>(false);
-  auto* cmd = app.add_subcommand("bench", "Benchmark the OpenCL renderer against the reference and an OpenMP tracer");
+  auto no_embree = std::make_shared<bool>(false);
+  auto no_reference = std::make_shared<bool>(false);
+  auto* cmd = app.add_subcommand(
+      "bench", "Benchmark the OpenCL renderer against the reference, an OpenMP tracer and an Embree tracer");
   o->add(cmd, /*with_engine=*/false);
   add_repeat_option(cmd, *repeat, "Timed rounds after one warm-up");
   cmd->add_flag("--json", *as_json, "Print one JSON object");
   cmd->add_flag("--no-omp", *no_omp, "Skip the OpenMP comparison");
-  cmd->callback([o, repeat, as_json, no_omp] {
+  cmd->add_flag("--no-embree", *no_embree, "Skip the Embree comparison");
+  cmd->add_flag("--no-reference", *no_reference,
+                "Skip the scalar double reference (it tests every sphere: hours on large scenes)");
+  cmd->callback([o, repeat, as_json, no_omp, no_embree, no_reference] {
     o->validate();
     Scene scene = load_scene(o->scene_path);
     BenchSettings s;
@@ -30,6 +36,8 @@ void add_bench_command(CLI::App& app) {
     s.depth = o->image.effective_depth(scene);
     s.repeat = *repeat;
     s.omp = !*no_omp;
+    s.embree = !*no_embree;
+    s.reference = !*no_reference;
     BenchResult r = run_bench(scene, o->device.devices(), o->settings(), s);
     if (*as_json) {
       nlohmann::json j = bench_json(r);

@@ -46,6 +46,7 @@ void add_sweep_command(CLI::App& app) {
     s.bench.height = o->image.height;
     s.bench.repeat = *repeat;
     s.bench.omp = *omp;
+    s.bench.embree = false;  // (bench's comparison; the sweep reports OpenMP only)
     s.bench.builds = false;
     // On a terminal only: the bar redraws itself with carriage returns.
     if (isatty(STDERR_FILENO)) {

@@ -1,11 +1,13 @@
 // bench.cpp - one scene on one or more devices: every time of the pipeline,
-// rays, the device's measured peak, and the reference / OpenMP comparisons
-// measured in the same run.
+// rays, the device's measured peak, and the reference / OpenMP / Embree
+// comparisons measured in the same run.
 #include "eval/bench.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 
 #include "cl/launch_timing.hpp"
+#include "embree_tracer.hpp"
 #include "omp_tracer.hpp"
 #include "reference/reference.hpp"
 #include "util/timer.hpp"
@@ -14,6 +16,26 @@ namespace clrt {
 
 std::string BenchResult::kernel_time_source() const {
   return time_source(host_timed_launches, launches);
+}
+
+PixelAgreement compare_rgb(const std::vector<float>& a, const std::vector<float>& b, int levels) {
+  PixelAgreement p;
+  if (a.size() != b.size()) {
+    p.differ = 1;
+    p.max_levels = 255;
+    return p;
+  }
+  const size_t pixels = a.size() / 3;
+  size_t differ = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    int worst = 0;
+    for (size_t c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(int(to_u8(a[3 * i + c])) - int(to_u8(b[3 * i + c]))));
+    p.max_levels = std::max(p.max_levels, worst);
+    if (worst > levels) ++differ;
+  }
+  if (pixels) p.differ = double(differ) / double(pixels);
+  return p;
 }
 
 BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
@@ -72,12 +94,16 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   r.build_warm = summarize(warm);
   r.upload = summarize(uploads);
 
-  // Timed rounds: a clrt frame, then an OpenMP frame of the same image, so
-  // background load on a shared machine falls on both alike and each round
-  // gives one like-for-like ratio.
-  std::vector<float> omp_rgb;
+  // Timed rounds: a clrt frame, then an OpenMP frame and an Embree frame of
+  // the same image, so background load on a shared machine falls on all
+  // alike and each round gives one like-for-like ratio per comparison. The
+  // Embree frame builds its BVH first; only its render is the frame.
+  std::vector<float> omp_rgb, embree_rgb;
+  clrt_bench::EmbreeBuildInfo embree_info;
   if (s.omp) r.omp_threads = clrt_bench::omp_render(scene, s.width, s.height, s.depth, omp_rgb);  // warm-up
-  std::vector<double> frames, downloads, omp_ms, frame_ratio, kernel_ratio;
+  if (s.embree)
+    r.embree_threads = clrt_bench::embree_render(scene, s.width, s.height, s.depth, embree_rgb, &embree_info);
+  std::vector<double> frames, downloads, omp_ms, frame_ratio, kernel_ratio, embree_ms, embree_build, embree_ratio;
   for (int i = 0; i < r.repeat; ++i) {
     r.image = cl.render();
     const FrameStats& frame = cl.stats();
@@ -93,6 +119,17 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
       if (frames.back() > 0) frame_ratio.push_back(omp_ms.back() / frames.back());
       if (r.kernel_ms.back() > 0) kernel_ratio.push_back(omp_ms.back() / r.kernel_ms.back());
     }
+    if (s.embree) {
+      r.embree_threads = clrt_bench::embree_render(scene, s.width, s.height, s.depth, embree_rgb, &embree_info);
+      embree_ms.push_back(embree_info.render_ms);
+      embree_build.push_back(embree_info.build_ms);
+      if (frames.back() > 0) embree_ratio.push_back(embree_ms.back() / frames.back());
+    }
+  }
+  if (s.omp && s.embree) {
+    const PixelAgreement a = compare_rgb(embree_rgb, omp_rgb);
+    r.embree_vs_omp_differ = a.differ;
+    r.embree_vs_omp_max_levels = a.max_levels;
   }
   r.shares = cl.stats().shares;
   r.kernel = summarize(r.kernel_ms);
@@ -101,6 +138,10 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   r.omp = summarize(omp_ms);
   r.speedup_vs_omp = summarize(frame_ratio);
   r.kernel_speedup_vs_omp = summarize(kernel_ratio);
+  r.embree = summarize(embree_ms);
+  r.embree_build = summarize(embree_build);
+  r.embree_build_ms = r.embree_build.median;
+  r.speedup_vs_embree = summarize(embree_ratio);
 
   // Rays: a separate build with per-pixel counters (they cost time).
   RenderSettings counting = settings;

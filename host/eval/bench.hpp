@@ -2,12 +2,15 @@
 // frame times of the OpenCL renderer on one or more devices (several share
 // each frame, see render/renderer.hpp), rays by kind (counted by the kernel),
 // the device's measured multiply-add peak, and in the same run the scalar
-// double reference and the OpenMP float tracer (bench/omp_tracer.hpp).
+// double reference, the OpenMP float tracer (bench/omp_tracer.hpp) and the
+// same tracer on an Embree BVH (bench/embree_tracer.hpp).
 //
 // Like for like: the headline comparison is clrt's warm frame (every launch
 // plus the download into host memory) against the OpenMP tracer's frame,
-// timed in alternating rounds so background load falls on both; kernel-only
-// ratios are secondary. Every timed figure is a Stats (N, median, mean ± sd,
+// timed in alternating rounds (clrt, OpenMP, Embree) so background load falls
+// on all alike; kernel-only ratios are secondary. The Embree frame is its
+// render only: its BVH build (once per frame there) is reported apart, as
+// clrt's hierarchy build is part of end to end, not of its frame. Every timed figure is a Stats (N, median, mean ± sd,
 // min, max). Kernel times are profiling events checked against the host
 // clock (launch_timing.hpp); the result says which clock they came from.
 #pragma once
@@ -25,9 +28,10 @@ namespace clrt {
 
 struct BenchSettings {
   int width = 600, height = 600, depth = 3;
-  int repeat = 5;         // >= 1 (--repeat checks it): timed rounds (clrt frame + OpenMP frame) after one warm-up each
+  int repeat = 5;         // >= 1 (--repeat checks it): timed rounds (clrt, OpenMP, Embree frame) after one warm-up each
   bool reference = true;  // time the scalar double reference (and keep its image)
   bool omp = true;        // time the OpenMP float tracer
+  bool embree = true;     // time the Embree tracer (and check its image against the OpenMP tracer's)
   bool builds = true;     // measure cold (no cache) and warm (cache hit) builds
   bool peak = true;       // measure the device's multiply-add peak
 };
@@ -69,12 +73,33 @@ struct BenchResult {
   int omp_threads = 0;
   Stats speedup_vs_omp;         // per round: OpenMP frame / clrt frame (the headline)
   Stats kernel_speedup_vs_omp;  // per round: OpenMP frame / clrt kernel time (secondary)
-  Image image;                  // the OpenCL image (last timed run)
-  Image reference_image;        // the reference image (if settings.reference)
+  Stats embree;                 // ms per Embree frame: the render only, without its BVH build
+  Stats embree_build;           // ms per Embree BVH build (geometry + rtcCommitScene), one per frame
+  double embree_build_ms = 0;   // embree_build.median
+  int embree_threads = 0;
+  Stats speedup_vs_embree;  // per round: Embree frame / clrt frame
+  // The Embree image against the OpenMP tracer's (both float, the same
+  // algorithm; last timed round): the fraction of pixels where a channel
+  // differs by more than one level of 255 after clamping and rounding, and
+  // the largest such difference. -1: not checked (no OpenMP or no Embree run).
+  double embree_vs_omp_differ = -1;
+  int embree_vs_omp_max_levels = -1;
+  Image image;            // the OpenCL image (last timed run)
+  Image reference_image;  // the reference image (if settings.reference)
 
   // "events", "host" or "mixed" (launch_timing.hpp)
   std::string kernel_time_source() const;
 };
+
+// Two float RGB images of the same size (width*height*3, 0..255 unclamped),
+// both clamped and rounded like every output (image.hpp's to_u8): the
+// fraction of pixels where some channel differs by more than `levels`, and
+// the largest difference in levels.
+struct PixelAgreement {
+  double differ = 0;
+  int max_levels = 0;
+};
+PixelAgreement compare_rgb(const std::vector<float>& a, const std::vector<float>& b, int levels = 1);
 
 BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
                       const BenchSettings& s);

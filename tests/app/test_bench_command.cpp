@@ -14,16 +14,37 @@ TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench][opencl]
   INFO(r.err);
   REQUIRE(r.status == 0);
   auto j = nlohmann::json::parse(r.out);
-  for (const char* k :
-       {"kernel_ms_median", "kernel_ms_min", "kernel_ms_max", "rays_total", "rays_primary", "rays_shadow",
-        "rays_reflection", "mrays_per_s", "reference_ms", "omp_ms_median", "opencl_speedup_vs_omp", "build_cold_ms",
-        "build_warm_ms", "upload_ms", "download_ms", "end_to_end_ms", "gflops", "peak_gflops", "ns_per_sphere_test"})
+  for (const char* k : {"kernel_ms_median",
+                        "kernel_ms_min",
+                        "kernel_ms_max",
+                        "rays_total",
+                        "rays_primary",
+                        "rays_shadow",
+                        "rays_reflection",
+                        "mrays_per_s",
+                        "reference_ms",
+                        "omp_ms_median",
+                        "opencl_speedup_vs_omp",
+                        "build_cold_ms",
+                        "build_warm_ms",
+                        "upload_ms",
+                        "download_ms",
+                        "end_to_end_ms",
+                        "gflops",
+                        "peak_gflops",
+                        "ns_per_sphere_test",
+                        "embree_ms_median",
+                        "embree_build_ms",
+                        "embree_threads",
+                        "opencl_speedup_vs_embree",
+                        "embree_vs_omp_differ",
+                        "embree_vs_omp_max_levels"})
     CHECK(j.contains(k));
   CHECK(j["kernel_ms"].size() == 2);
   CHECK(j["build_warm_cached"] == true);
   // Every timed figure comes with N, median, mean, sd, min and max.
   for (const char* k : {"kernel", "frame", "download", "omp", "speedup_vs_omp", "kernel_speedup_vs_omp", "build_cold",
-                        "build_warm", "upload", "reference"}) {
+                        "build_warm", "upload", "reference", "embree", "embree_build", "speedup_vs_embree"}) {
     INFO(k);
     REQUIRE(j.contains(k));
     for (const char* f : {"n", "median", "mean", "sd", "min", "max"}) CHECK(j[k].contains(f));
@@ -32,6 +53,14 @@ TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench][opencl]
   }
   CHECK(j["frame"]["n"] == 2);
   CHECK(j["omp"]["n"] == 2);
+  CHECK(j["embree"]["n"] == 2);  // one Embree frame per round, its build apart
+  CHECK(j["embree_build"]["n"] == 2);
+  CHECK(j["speedup_vs_embree"]["n"] == 2);
+  CHECK(j["opencl_speedup_vs_embree"] == j["speedup_vs_embree"]["median"]);
+  CHECK(j["embree_build_ms"] == j["embree_build"]["median"]);
+  // The Embree tracer draws the OpenMP tracer's image (tests/eval/test_embree_tracer.cpp).
+  CHECK(j["embree_vs_omp_differ"] == 0);
+  CHECK(j["embree_vs_omp_max_levels"].get<int>() <= 1);
   CHECK(j["build_cold"]["n"] == 2);  // min(--repeat, 3)
   // The headline ratio is frame against frame: the same work on both sides.
   CHECK(j["opencl_speedup_vs_omp"] == j["speedup_vs_omp"]["median"]);
@@ -45,6 +74,39 @@ TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench][opencl]
   CHECK(j["rays_primary"] == 40 * 30);
   CHECK(j["rays_total"].get<uint64_t>() ==
         j["rays_primary"].get<uint64_t>() + j["rays_shadow"].get<uint64_t>() + j["rays_reflection"].get<uint64_t>());
+}
+
+TEST_CASE("clrt bench --no-embree, --no-omp and --no-reference drop their comparisons", "[cli][bench][opencl]") {
+  const std::vector<std::string> base = {"bench",    clrt_test::source_path("scenes/cgfs-demo.json"),
+                                         "--width",  "24",
+                                         "--height", "16",
+                                         "--depth",  "1",
+                                         "--repeat", "1"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return clrt_test::run_clrt(args);
+  };
+  auto j_run = with({"--no-embree", "--json"});
+  INFO(j_run.err);
+  REQUIRE(j_run.status == 0);
+  auto j = nlohmann::json::parse(j_run.out);
+  CHECK(j["embree"]["n"] == 0);
+  CHECK(j["omp"]["n"] == 1);
+  CHECK(j["embree_vs_omp_differ"].is_null());  // not checked, and says so
+  auto text = with({"--no-omp"});
+  INFO(text.err);
+  REQUIRE(text.status == 0);
+  CHECK(text.out.find("OpenMP float") == std::string::npos);
+  CHECK(text.out.find("Embree float") != std::string::npos);
+  CHECK(text.out.find("(Embree frame / clrt frame") != std::string::npos);
+  CHECK(text.out.find("not checked") != std::string::npos);
+  auto no_reference = with({"--no-reference", "--json"});
+  INFO(no_reference.err);
+  REQUIRE(no_reference.status == 0);
+  auto k = nlohmann::json::parse(no_reference.out);
+  CHECK(k["reference"]["n"] == 0);
+  CHECK(j["reference"]["n"] == 1);
 }
 
 TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep][opencl]") {
