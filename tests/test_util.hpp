@@ -42,10 +42,11 @@ inline clrt::Image render_cl(const clrt::Scene& s, int width, int height, int de
   return r.render();
 }
 
-// Every scenes/*.json of the source tree, sorted.
-inline std::vector<std::string> shipped_scenes() {
+// Every scenes/*.json of the source tree, sorted (`folder` "scenes/large":
+// the scenes too large for the suites that render with the reference).
+inline std::vector<std::string> shipped_scenes(const std::string& folder = "scenes") {
   std::vector<std::string> out;
-  for (auto& e : std::filesystem::directory_iterator(source_path("scenes")))
+  for (auto& e : std::filesystem::directory_iterator(source_path(folder)))
     if (e.path().extension() == ".json") out.push_back(e.path().string());
   std::sort(out.begin(), out.end());
   return out;

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   clrt::add_compare_command(app);
   clrt::add_bench_command(app);
   clrt::add_sweep_command(app);
+  clrt::add_scaling_command(app);
   clrt::add_accuracy_command(app);
   clrt::add_stability_command(app);
   clrt::add_generate_command(app);

@@ -104,5 +104,6 @@ void add_sweep_command(CLI::App& app);
 void add_accuracy_command(CLI::App& app);
 void add_stability_command(CLI::App& app);
 void add_generate_command(CLI::App& app);
+void add_scaling_command(CLI::App& app);
 
 }  // namespace clrt

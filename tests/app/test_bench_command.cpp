@@ -2,6 +2,7 @@
 // the keys, rows and files the commands promise (on the test device).
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -138,4 +139,43 @@ TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep
   CHECK(column(rows[2], "depth") == "2");
   CHECK(std::filesystem::file_size(dir / "s.png") > 0);
   CHECK(std::filesystem::file_size(dir / "s-rays.png") > 0);
+}
+
+TEST_CASE("clrt scaling writes one CSV row per count and a log-log plot", "[cli][bench][opencl]") {
+  clrt_test::TempDir dir;
+  auto r = clrt_test::run_clrt({"scaling", "--spheres", "8,40", "--width", "24", "--height", "16", "--repeat", "1",
+                                "--csv", dir / "s.csv", "--plot", dir / "s.png"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("Embree/clrt") != std::string::npos);
+  std::ifstream csv(dir / "s.csv");
+  std::string header, line;
+  REQUIRE(std::getline(csv, header));
+  CHECK(header.rfind("spheres,json_bytes,parse_ms,", 0) == 0);
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[0].rfind("8,", 0) == 0);
+  CHECK(rows[1].rfind("40,", 0) == 0);
+  // 8 spheres (and the floor) test every sphere; 40 walk the hierarchy
+  // (kBvhMinSpheres = 32): bvh_bytes, the sixth column.
+  auto column = [](const std::string& row, int k) {
+    std::stringstream in(row);
+    std::string field;
+    for (int i = 0; i <= k; ++i) std::getline(in, field, ',');
+    return field;
+  };
+  CHECK(column(rows[0], 5) == "0");
+  CHECK(std::stod(column(rows[1], 5)) > 0);
+  CHECK(std::filesystem::file_size(dir / "s.png") > 1000);
+}
+
+TEST_CASE("clrt scaling rejects bad counts before measuring", "[cli]") {
+  for (const char* counts : {"0", "abc", "1,,2", "1,", "-5", "3000000", "1e3"}) {
+    INFO(counts);
+    auto r = clrt_test::run_clrt({"scaling", "--spheres", counts, "--width", "8", "--height", "8"});
+    CHECK(r.status == 2);
+    CHECK(r.one_line_error());
+    CHECK(r.err.find("clrt: error: --spheres") == 0);
+  }
 }

@@ -11,6 +11,7 @@
 #include "render/precision_support.hpp"
 #include "render/renderer.hpp"
 #include "scene/random_scene.hpp"
+#include "scene/scene_json.hpp"
 #include "test_util.hpp"
 #include "util/error.hpp"
 
@@ -213,6 +214,26 @@ TEST_CASE("BVH images equal brute-force images at every lane count", "[opencl][b
     const Image a = render(scene, 80, 60, 3, config, Accel::Bvh);
     const Image b = render(scene, 80, 60, 3, config, Accel::None);
     CHECK(pixels_differing(a, b) == 0);
+  }
+}
+
+TEST_CASE("the large shipped scenes: the hierarchy's image is the brute-force image", "[opencl][bvh]") {
+  const DeviceInfo device = clrt_test::test_device();
+  const std::vector<std::string> scenes = clrt_test::shipped_scenes("scenes/large");
+  REQUIRE(!scenes.empty());
+  for (const auto& path : scenes) {
+    INFO(path);
+    const Scene scene = load_scene(path);
+    CHECK(scene.spheres.size() > 1000);
+    if (scene.spheres.size() > 1000 && device.platform_name.find("rusticl") != std::string::npos) {
+      WARN("skipped on " << device.platform_name << " (long loops, see above)");
+      continue;
+    }
+    FrameStats with_bvh;
+    KernelConfig config;  // robust, specialized: what `clrt render` builds
+    const Image a = render(scene, 64, 36, 3, config, Accel::Auto, &with_bvh);
+    CHECK(with_bvh.bvh);
+    CHECK(pixels_differing(a, render(scene, 64, 36, 3, config, Accel::None)) == 0);
   }
 }
 

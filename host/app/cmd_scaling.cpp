@@ -1,0 +1,107 @@
+// cmd_scaling.cpp - `clrt scaling --spheres 1000,10000,...`: frame time
+// against the number of spheres, clrt beside the Embree tracer.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "app/options.hpp"
+#include "app/scaling_report.hpp"
+#include "eval/scaling.hpp"
+#include "image/image_file.hpp"
+#include "scene/random_scene.hpp"
+#include "util/error.hpp"
+#include "util/output_file.hpp"
+#include "util/progress.hpp"
+
+namespace clrt {
+
+namespace {
+
+// "1000,10000" -> {1000, 10000}; each in [1, kMaxGeneratedSpheres].
+std::vector<size_t> parse_counts(const std::string& text) {
+  std::vector<size_t> counts;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    size_t used = 0;
+    unsigned long long n = 0;
+    try {
+      if (item.empty() || item[0] == '-' || item[0] == '+') throw std::invalid_argument(item);
+      n = std::stoull(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || n < 1 || n > kMaxGeneratedSpheres)
+      throw UserError("--spheres: expected counts from 1 to " + std::to_string(kMaxGeneratedSpheres) +
+                      " separated by commas (got \"" + text.substr(0, 64) + "\")");
+    counts.push_back(size_t(n));
+  }
+  if (counts.empty() || text.back() == ',') throw UserError("--spheres: expected counts separated by commas");
+  if (counts.size() > 32) throw UserError("--spheres: at most 32 counts");
+  return counts;
+}
+
+}  // namespace
+
+void add_scaling_command(CLI::App& app) {
+  auto image = std::make_shared<ImageOptions>();
+  auto device = std::make_shared<DeviceOptions>();
+  auto kernel = std::make_shared<KernelOptions>();
+  auto launch = std::make_shared<LaunchOptions>();
+  auto counts = std::make_shared<std::string>("1000,10000,100000");
+  auto settings = std::make_shared<ScalingSettings>();
+  auto repeat = std::make_shared<int>(3);
+  auto no_embree = std::make_shared<bool>(false);
+  auto csv = std::make_shared<std::string>();
+  auto plot = std::make_shared<std::string>();
+  auto* cmd = app.add_subcommand(
+      "scaling", "Frame time against the number of spheres (random scenes made in memory), beside the Embree tracer");
+  cmd->add_option("--spheres", *counts, "Sphere counts, separated by commas (default 1000,10000,100000)");
+  cmd->add_option("--seed", settings->seed, "Seed of the scenes (default 5)");
+  cmd->add_option("--fill", settings->fill, "Fraction of the volume the spheres fill (default 0.05)")
+      ->check(CLI::Range(1e-6, 1.0));
+  image->add(cmd);
+  device->add(cmd, /*several=*/true);
+  kernel->add(cmd, /*with_variant=*/true);
+  launch->add(cmd);
+  add_repeat_option(cmd, *repeat, "Timed rounds per scene after one warm-up (default 3)");
+  cmd->add_flag("--no-embree", *no_embree, "Skip the Embree comparison");
+  cmd->add_option("--csv", *csv, "Write the table as CSV to this file");
+  cmd->add_option("--plot", *plot, "Write a log-log plot of frame time against spheres here (PNG, ...)");
+  cmd->callback([=] {
+    image->validate();
+    launch->validate();
+    settings->counts = parse_counts(*counts);
+    if (!plot->empty()) check_output_format(*plot);  // fail before measuring
+    if (!csv->empty()) check_writable(*csv, "CSV");
+    settings->bench.width = image->width;
+    settings->bench.height = image->height;
+    settings->bench.depth = image->depth;  // kSceneDepth (-1): the scenes' own (3)
+    settings->bench.repeat = *repeat;
+    settings->bench.reference = false;  // every sphere per ray: hours at these sizes
+    settings->bench.omp = false;
+    settings->bench.embree = !*no_embree;
+    settings->bench.builds = false;
+    settings->bench.peak = false;
+    if (isatty(STDERR_FILENO)) {
+      auto bar = std::make_shared<ProgressBar>(std::cerr);
+      settings->progress = [bar](int done, int total, const std::string& what) { bar->show(done, total, what); };
+    }
+    const RenderSettings render{kernel->config(), launch->tiles(), launch->local()};
+    const auto rows = run_scaling(device->devices(), render, *settings);
+    print_scaling(rows);
+    if (!csv->empty()) {
+      write_text_atomic(*csv, scaling_csv(rows), "CSV");
+      std::printf("wrote %s\n", csv->c_str());
+    }
+    if (!plot->empty()) {
+      plot_scaling(rows, *plot, "frame time against spheres");
+      std::printf("wrote %s\n", plot->c_str());
+    }
+  });
+}
+
+}  // namespace clrt

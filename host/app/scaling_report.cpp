@@ -1,0 +1,84 @@
+// scaling_report.cpp - scaling rows as a table, CSV and a log-log plot.
+#include "app/scaling_report.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "cl/launch_timing.hpp"
+#include "image/plot.hpp"
+#include "util/csv.hpp"
+
+namespace clrt {
+
+std::string scaling_csv(const std::vector<ScalingRow>& rows) {
+  std::ostringstream o;
+  o << "spheres,json_bytes,parse_ms,s_per_million_spheres,bvh_build_ms,bvh_bytes,bvh_depth,width,height,depth,"
+       "rays_total,sphere_tests,frame_ms_median,frame_ms_mean,frame_ms_sd,frame_n,kernel_ms_median,"
+       "kernel_time_source,ns_per_ray,embree_ms_median,embree_ms_mean,embree_ms_sd,embree_n,embree_build_ms,"
+       "embree_ns_per_ray,speedup_vs_embree_median,speedup_vs_embree_mean,speedup_vs_embree_sd,device\n";
+  for (const auto& r : rows) {
+    const BenchResult& b = r.bench;
+    const double per_million = r.spheres > 0 ? r.parse_ms * 1e-3 / (double(r.spheres) * 1e-6) : 0;
+    o << r.spheres << ',' << r.json_bytes << ',' << r.parse_ms << ',' << per_million << ',' << b.bvh_build_ms << ','
+      << b.bvh_bytes << ',' << b.bvh_depth << ',' << b.width << ',' << b.height << ',' << b.depth << ','
+      << b.rays.total() << ',' << b.rays.sphere_tests << ',' << b.frame.median << ',' << b.frame.mean << ','
+      << b.frame.sd << ',' << b.frame.n << ',' << b.kernel.median << ',' << b.kernel_time_source() << ','
+      << r.ns_per_ray << ',' << b.embree.median << ',' << b.embree.mean << ',' << b.embree.sd << ',' << b.embree.n
+      << ',' << b.embree_build_ms << ',' << r.embree_ns_per_ray << ',' << b.speedup_vs_embree.median << ','
+      << b.speedup_vs_embree.mean << ',' << b.speedup_vs_embree.sd << ',' << csv_field(b.device) << '\n';
+  }
+  return o.str();
+}
+
+void print_scaling(const std::vector<ScalingRow>& rows) {
+  if (rows.empty()) return;
+  const BenchResult& first = rows.front().bench;
+  std::printf("%dx%d, depth %d, on %s; frame = every launch + download (median of N, mean ± sd)\n", first.width,
+              first.height, first.depth, first.device.c_str());
+  std::printf("%9s %9s %8s %9s %7s %22s %9s %22s %9s %16s\n", "spheres", "parse_ms", "s/Msph", "bvh_ms", "bvh_MiB",
+              "clrt frame ms", "ns/ray", "Embree frame ms", "ns/ray", "Embree/clrt");
+  for (const auto& r : rows) {
+    const BenchResult& b = r.bench;
+    const double per_million = r.spheres > 0 ? r.parse_ms * 1e-3 / (double(r.spheres) * 1e-6) : 0;
+    char clrt_ms[64], embree_ms[64], ratio[64];
+    std::snprintf(clrt_ms, sizeof clrt_ms, "%.1f ± %.1f (N=%d)", b.frame.median, b.frame.sd, b.frame.n);
+    if (b.embree.n > 0) {
+      std::snprintf(embree_ms, sizeof embree_ms, "%.1f ± %.1f (N=%d)", b.embree.median, b.embree.sd, b.embree.n);
+      std::snprintf(ratio, sizeof ratio, "%.2f ± %.2f", b.speedup_vs_embree.median, b.speedup_vs_embree.sd);
+    } else {
+      std::snprintf(embree_ms, sizeof embree_ms, "-");
+      std::snprintf(ratio, sizeof ratio, "-");
+    }
+    std::printf("%9zu %9.1f %8.2f %9.1f %7.2f %22s %9.0f %22s %9.0f %16s\n", r.spheres, r.parse_ms, per_million,
+                b.bvh_build_ms, double(b.bvh_bytes) / (1 << 20), clrt_ms, r.ns_per_ray, embree_ms, r.embree_ns_per_ray,
+                ratio);
+  }
+  std::printf(
+      "Embree/clrt: Embree frame / clrt frame per round (> 1: clrt is faster); ns/ray: frame wall time / "
+      "rays traced\n");
+  for (const auto& r : rows)
+    if (r.bench.host_timed_launches) {
+      std::printf("kernel times%s\n", time_source_note(r.bench.host_timed_launches, r.bench.launches).c_str());
+      break;
+    }
+}
+
+void plot_scaling(const std::vector<ScalingRow>& rows, const std::string& path, const std::string& title) {
+  Series clrt("clrt frame", {}, {}), embree("Embree frame (render only)", {}, {});
+  clrt.lines = embree.lines = true;
+  for (const auto& r : rows) {
+    clrt.x.push_back(double(r.spheres));
+    clrt.y.push_back(r.bench.frame.median);
+    if (r.bench.embree.n > 0) {
+      embree.x.push_back(double(r.spheres));
+      embree.y.push_back(r.bench.embree.median);
+    }
+  }
+  std::vector<Series> series{clrt};
+  if (!embree.x.empty()) series.push_back(embree);
+  PlotOptions po;
+  po.log_x = po.log_y = true;
+  write_plot(path, title, "random spheres", "ms per frame (median)", series, po);
+}
+
+}  // namespace clrt

@@ -1,0 +1,60 @@
+// scaling.cpp - the scenes of `clrt scaling`, one after another (only one is
+// in memory at a time: a million spheres take ~200 MB with its JSON text).
+#include "eval/scaling.hpp"
+
+#include <chrono>
+
+#include "scene/random_scene.hpp"
+#include "scene/scene_json.hpp"
+
+namespace clrt {
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::vector<ScalingRow> run_scaling(const std::vector<DeviceInfo>& devices, const RenderSettings& settings,
+                                    const ScalingSettings& s) {
+  std::vector<ScalingRow> rows;
+  const int total = static_cast<int>(s.counts.size());
+  for (size_t count : s.counts) {
+    if (s.progress) s.progress(static_cast<int>(rows.size()), total, std::to_string(count) + " spheres");
+    ScalingRow row;
+    row.spheres = count;
+    RandomSceneSettings scene_settings;
+    scene_settings.count = count;
+    scene_settings.seed = s.seed;
+    scene_settings.fill = s.fill;
+    auto t0 = std::chrono::steady_clock::now();
+    const Scene generated = random_scene(scene_settings);
+    row.generate_ms = ms_since(t0);
+    // What is rendered is what the file would give: the scene read back.
+    Scene scene;
+    {
+      const std::string text = scene_to_json(generated, JsonStyle::Compact);
+      row.json_bytes = double(text.size());
+      t0 = std::chrono::steady_clock::now();
+      scene = parse_scene(text, "scaling");
+      row.parse_ms = ms_since(t0);
+    }
+    BenchSettings bench = s.bench;
+    if (bench.depth < 0) bench.depth = scene.recursion_depth;
+    row.bench = run_bench(scene, devices, settings, bench);
+    row.bench.image = Image();
+    row.bench.reference_image = Image();
+    const double rays = double(row.bench.rays.total());
+    if (rays > 0) {
+      row.ns_per_ray = row.bench.frame.median * 1e6 / rays;
+      if (row.bench.embree.n > 0) row.embree_ns_per_ray = row.bench.embree.median * 1e6 / rays;
+    }
+    rows.push_back(std::move(row));
+  }
+  if (s.progress) s.progress(total, total, "done");
+  return rows;
+}
+
+}  // namespace clrt
