@@ -59,8 +59,28 @@ typedef int16 lint;
 #if CLRT_PRECISION == CLRT_PRECISION_FP64
 #error "fp64 builds use CLRT_LANES=1"
 #endif
-#define ANY(mask) any(mask)
-#define ALL(mask) all(mask)
+/* OR / AND of the lanes as a tree of halves (LLVM turns it into one vector
+ * test; PoCL's any() and all() test lane after lane, a branch each). */
+#if CLRT_LANES == 4
+#define LANE_OR(m) lane_or4(m)
+#define LANE_AND(m) lane_and4(m)
+#elif CLRT_LANES == 8
+#define LANE_OR(m) lane_or4((m).lo | (m).hi)
+#define LANE_AND(m) lane_and4((m).lo&(m).hi)
+#else
+#define LANE_OR(m) lane_or4(((m).lo.lo | (m).lo.hi) | ((m).hi.lo | (m).hi.hi))
+#define LANE_AND(m) lane_and4(((m).lo.lo & (m).lo.hi) & ((m).hi.lo & (m).hi.hi))
+#endif
+inline int lane_or4(int4 m) {
+  const int2 h = m.lo | m.hi;
+  return h.x | h.y;
+}
+inline int lane_and4(int4 m) {
+  const int2 h = m.lo & m.hi;
+  return h.x & h.y;
+}
+#define ANY(mask) (LANE_OR(mask) != 0)
+#define ALL(mask) (LANE_AND(mask) != 0)
 #define FIRST_LANE(x) ((x).s0)
 #else
 #define FIRST_LANE(x) (x)
