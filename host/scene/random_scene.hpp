@@ -11,9 +11,10 @@
 
 namespace clrt {
 
-// Most spheres a generated scene has: its file (compact JSON, about 110
-// bytes a sphere) stays within the loader's limit, kMaxSceneBytes.
-constexpr size_t kMaxGeneratedSpheres = 500000;
+// Most spheres a generated scene has: its file (compact JSON, about 120
+// bytes a sphere: 2 000 000 spheres take 229 MiB) stays within the loader's
+// limit, kMaxSceneBytes (256 MiB), and kMaxSceneSpheres.
+constexpr size_t kMaxGeneratedSpheres = 2000000;
 
 struct RandomSceneSettings {
   size_t count = 1000;  // spheres, besides the floor

@@ -1,18 +1,26 @@
-// scene_json.cpp - strict JSON scene loader: unknown keys, wrong types,
-// non-finite numbers and out-of-range values are all rejected with a one-line
-// message.
+// scene_json.cpp - strict, streaming JSON scene loader: one SAX pass over
+// the text builds the scene sphere by sphere (no document tree), rejecting
+// unknown and duplicate keys, wrong types, non-finite numbers and
+// out-of-range values with a one-line message.
 #include "scene/scene_json.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <istream>
+#include <iterator>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <unordered_set>
+#include <string_view>
+#include <type_traits>
+#include <utility>
 
 #include "clrt_layout.h"
 #include "util/error.hpp"
@@ -22,120 +30,120 @@ namespace {
 
 using json = nlohmann::json;
 
-class Parser {
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// A string from the file, quoted and escaped as JSON, so that a key such as
+// "a\nb" cannot break the one-line message.
+// Long strings are cut (a 50 MB key must not be echoed in full).
+std::string json_quoted(const std::string& s) {
+  constexpr size_t kMaxEcho = 64;
+  const std::string shown = json(s.substr(0, kMaxEcho)).dump(-1, ' ', false, json::error_handler_t::replace);
+  return s.size() <= kMaxEcho ? shown : shown + "... (" + std::to_string(s.size()) + " bytes)";
+}
+
+std::string size_text(size_t bytes) {
+  return bytes % (size_t(1) << 20) == 0 ? std::to_string(bytes >> 20) + " MiB" : std::to_string(bytes) + " bytes";
+}
+
+[[noreturn]] void too_large(const std::string& name, size_t max_bytes) {
+  throw UserError(name + ": scene file is larger than " + size_text(max_bytes));
+}
+
+// What a value in the file is: the key it stands under, or its place.
+enum class Slot : unsigned char {
+  // keys of the root object
+  Camera,
+  Background,
+  RecursionDepth,
+  Epsilon,
+  Spheres,
+  Lights,
+  // of the camera
+  Position,
+  Rotation,
+  Viewport,
+  Distance,
+  // of a sphere
+  Center,
+  Radius,
+  Color,
+  Specular,
+  Reflective,
+  // of a light
+  Type,
+  Intensity,
+  LightPosition,
+  Direction,
+  // without a key: the whole text, elements of arrays
+  Document,
+  Sphere,
+  Light,
+  Row,     // of camera.rotation
+  Number,  // of a vector
+};
+// string_view: a key is compared by its length first.
+constexpr std::string_view kKeyNames[] = {"camera", "background", "recursion_depth", "epsilon",  "spheres",
+                                          "lights", "position",   "rotation",        "viewport", "projection_plane_d",
+                                          "center", "radius",     "color",           "specular", "reflective",
+                                          "type",   "intensity",  "position",        "direction"};
+static_assert(std::size(kKeyNames) == size_t(Slot::Document));
+constexpr uint32_t bit(Slot s) {
+  return uint32_t(1) << static_cast<unsigned>(s);
+}
+
+// The containers a scene has; each open one is a Frame.
+enum class Ctx : unsigned char { Root, Camera, Sphere, Light, Spheres, Lights, Rotation, Numbers };
+constexpr bool is_object(Ctx c) {
+  return c <= Ctx::Light;
+}
+
+struct Frame {
+  Ctx ctx = Ctx::Root;
+  Slot key = Slot::Document;  // objects: the key whose value is being read
+  uint32_t seen = 0;          // objects: bit(key) of every key read
+  size_t count = 0;           // arrays: elements read (the index of the one being read)
+};
+
+// The keys an object of kind `c` may have: [first, last).
+std::pair<Slot, Slot> keys_of(Ctx c) {
+  switch (c) {
+    case Ctx::Root:
+      return {Slot::Camera, Slot::Position};
+    case Ctx::Camera:
+      return {Slot::Position, Slot::Center};
+    case Ctx::Sphere:
+      return {Slot::Center, Slot::Type};
+    default:
+      return {Slot::Type, Slot::Document};
+  }
+}
+
+bool light_allows(LightType t, Slot key) {
+  if (key == Slot::LightPosition) return t == LightType::Point;
+  if (key == Slot::Direction) return t == LightType::Directional;
+  return true;
+}
+
+// The SAX handler: validates each value as it arrives and writes it into
+// the scene; errors throw UserError("<name>: <path>: <problem>"). Memory:
+// the scene, one sphere or light being read, and a stack of at most
+// kMaxDepth frames (the format nests 4 deep; a container anywhere else is a
+// type error, so the parser never goes deeper).
+class SceneBuilder final : public nlohmann::json_sax<json> {
  public:
-  explicit Parser(std::string name) : name_(std::move(name)) {}
+  SceneBuilder(const std::string& name, const SceneLimits& limits) : name_(name), limits_(limits) {}
 
-  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw UserError(name_ + ": " + (where.empty() ? "" : where + ": ") + what);
-  }
-
-  void only_keys(const json& obj, const std::string& where, std::initializer_list<const char*> keys) const {
-    if (!obj.is_object()) fail(where, "expected an object, got " + type_of(obj));
-    for (auto it = obj.begin(); it != obj.end(); ++it) {
-      bool known = false;
-      for (const char* k : keys) known = known || it.key() == k;
-      if (!known) fail(where, "unknown key " + quoted(it.key()));
-    }
-  }
-
-  double number(const json& j, const std::string& where) const {
-    if (!j.is_number()) fail(where, "expected a number, got " + type_of(j));
-    double v = j.get<double>();
-    if (!std::isfinite(v)) fail(where, "number is not finite");
-    return v;
-  }
-
-  double number_in(const json& j, const std::string& where, double lo, double hi) const {
-    double v = number(j, where);
-    if (v < lo || v > hi) fail(where, "must be in [" + fmt(lo) + ", " + fmt(hi) + "] (got " + fmt(v) + ")");
-    return v;
-  }
-
-  Vec3 vec3(const json& j, const std::string& where) const {
-    if (!j.is_array() || j.size() != 3) fail(where, "expected an array of 3 numbers");
-    return {number(j[0], where + "[0]"), number(j[1], where + "[1]"), number(j[2], where + "[2]")};
-  }
-
-  // A coordinate within the float32-safe range (scene.hpp).
-  Vec3 position(const json& j, const std::string& where) const {
-    Vec3 v = vec3(j, where);
-    const double c[3] = {v.x, v.y, v.z};
-    for (int k = 0; k < 3; ++k)
-      if (std::fabs(c[k]) > kMaxLength)
-        fail(where + "[" + std::to_string(k) + "]",
-             "must be within ±" + fmt(kMaxLength) + ", the range clrt renders in float32 (got " + fmt(c[k]) + ")");
-    return v;
-  }
-
-  // A size in [kMinLength, kMaxLength]; `positive_message` for <= 0.
-  double size(const json& j, const std::string& where, const std::string& positive_message) const {
-    const double v = number(j, where);
-    if (!(v > 0)) fail(where, positive_message + " (got " + fmt(v) + ")");
-    if (v < kMinLength || v > kMaxLength)
-      fail(where, "must be in [" + fmt(kMinLength) + ", " + fmt(kMaxLength) +
-                      "], the range clrt renders in float32 (got " + fmt(v) + ")");
-    return v;
-  }
-
-  Vec3 color(const json& j, const std::string& where) const {
-    Vec3 c = vec3(j, where);
-    for (double v : {c.x, c.y, c.z})
-      if (v < 0 || v > 255) fail(where, "color components must be in [0, 255] (got " + fmt(v) + ")");
-    return c;
-  }
-
-  static std::string type_of(const json& j) { return j.type_name(); }
-  // A string from the file, quoted and escaped as JSON, so that a key such as
-  // "a\nb" cannot break the one-line message.
-  // Long strings are cut (a 50 MB key must not be echoed in full).
-  static std::string quoted(const std::string& s) {
-    constexpr size_t kMaxEcho = 64;
-    const std::string shown = json(s.substr(0, kMaxEcho)).dump(-1, ' ', false, json::error_handler_t::replace);
-    return s.size() <= kMaxEcho ? shown : shown + "... (" + std::to_string(s.size()) + " bytes)";
-  }
-  static std::string fmt(double v) {
-    std::ostringstream os;
-    os << v;
-    return os.str();
-  }
-
-  Scene parse(const json& root) const {
-    Scene s;
-    only_keys(root, "", {"camera", "background", "recursion_depth", "epsilon", "spheres", "lights"});
-    if (root.contains("camera")) parse_camera(root["camera"], s.camera);
-    if (root.contains("background")) s.background = color(root["background"], "background");
-    if (root.contains("recursion_depth")) {
-      const json& d = root["recursion_depth"];
-      if (!d.is_number_integer()) fail("recursion_depth", "expected an integer, got " + type_of(d));
-      // Unsigned first: get<long long>() of a value above LLONG_MAX wraps.
-      bool in_range = d.is_number_unsigned() ? d.get<unsigned long long>() <= CLRT_MAX_DEPTH
-                                             : d.get<long long>() >= 0 && d.get<long long>() <= CLRT_MAX_DEPTH;
-      if (!in_range)
-        fail("recursion_depth", "must be in [0, " + std::to_string(CLRT_MAX_DEPTH) + "] (got " + d.dump() + ")");
-      s.recursion_depth = static_cast<int>(d.get<long long>());
-    }
-    if (root.contains("epsilon")) s.epsilon = number_in(root["epsilon"], "epsilon", 0, kMaxLength);
-    if (root.contains("spheres")) {
-      const json& arr = root["spheres"];
-      if (!arr.is_array()) fail("spheres", "expected an array, got " + type_of(arr));
-      for (size_t i = 0; i < arr.size(); ++i)
-        s.spheres.push_back(parse_sphere(arr[i], "spheres[" + std::to_string(i) + "]"));
-    }
-    if (root.contains("lights")) {
-      const json& arr = root["lights"];
-      if (!arr.is_array()) fail("lights", "expected an array, got " + type_of(arr));
-      for (size_t i = 0; i < arr.size(); ++i)
-        s.lights.push_back(parse_light(arr[i], "lights[" + std::to_string(i) + "]"));
-      double total = 0;
-      for (const auto& l : s.lights) total += l.intensity;
-      if (total > kMaxTotalIntensity)
-        fail("lights", "the intensities add up to " + fmt(total) + ", more than " + fmt(kMaxTotalIntensity) +
-                           " (colours would overflow float32)");
-    }
+  // After the parse: the checks that need the whole camera.
+  Scene finish() {
+    if (depth_ != 0) fail("", "incomplete scene");  // not reached: the parser reports the end of the text
     // The camera's ray directions: rotation x (viewport/2, viewport/2, d).
-    const auto& r = s.camera.rotation;
-    const double half_w = s.camera.viewport_w / 2, half_h = s.camera.viewport_h / 2, d = s.camera.projection_plane_d;
+    const Camera& c = scene_.camera;
+    const auto& r = c.rotation;
+    const double half_w = c.viewport_w / 2, half_h = c.viewport_h / 2, d = c.projection_plane_d;
     for (int row = 0; row < 3; ++row) {
       const double reach =
           std::fabs(r[row * 3]) * half_w + std::fabs(r[row * 3 + 1]) * half_h + std::fabs(r[row * 3 + 2]) * d;
@@ -144,76 +152,403 @@ class Parser {
                            " times viewport and projection distance), more than " + fmt(kMaxLength) +
                            ", the range clrt renders in float32");
     }
-    return s;
+    return std::move(scene_);
   }
 
-  void parse_camera(const json& j, Camera& c) const {
-    only_keys(j, "camera", {"position", "rotation", "viewport", "projection_plane_d"});
-    if (j.contains("position")) c.position = position(j["position"], "camera.position");
-    if (j.contains("rotation")) {
-      const json& r = j["rotation"];
-      if (!r.is_array() || r.size() != 3) fail("camera.rotation", "expected a 3x3 array of numbers");
-      for (int row = 0; row < 3; ++row) {
-        Vec3 v = vec3(r[row], "camera.rotation[" + std::to_string(row) + "]");
-        c.rotation[row * 3 + 0] = v.x;
-        c.rotation[row * 3 + 1] = v.y;
-        c.rotation[row * 3 + 2] = v.z;
+  // ---- SAX events ----
+  bool null() override { type_error(enter_value(), "null"); }
+  bool boolean(bool) override { type_error(enter_value(), "boolean"); }
+  bool number_integer(number_integer_t v) override { return integer(v); }
+  bool number_unsigned(number_unsigned_t v) override { return integer(v); }
+  bool number_float(number_float_t v, const string_t&) override {
+    const Slot s = enter_value();
+    if (s == Slot::RecursionDepth) type_error(s, "number");
+    return number(s, v);
+  }
+  bool binary(binary_t&) override { type_error(enter_value(), "binary"); }
+  bool string(string_t& v) override {
+    const Slot s = enter_value();
+    if (s != Slot::Type) type_error(s, "string");
+    light_type(v);
+    return true;
+  }
+
+  bool start_object(std::size_t) override {
+    const Slot s = enter_value();
+    switch (s) {
+      case Slot::Document:
+        push(Ctx::Root);
+        break;
+      case Slot::Camera:
+        push(Ctx::Camera);
+        break;
+      case Slot::Sphere:
+        sphere_ = Sphere{};
+        push(Ctx::Sphere);
+        break;
+      case Slot::Light:
+        light_ = Light{};
+        light_typed_ = false;
+        push(Ctx::Light);
+        break;
+      default:
+        type_error(s, "object");
+    }
+    return true;
+  }
+
+  bool key(string_t& k) override {
+    Frame& f = top();
+    const auto [first, last] = keys_of(f.ctx);
+    Slot s = Slot::Document;
+    for (auto i = static_cast<unsigned>(first); i < static_cast<unsigned>(last); ++i)
+      if (std::string_view(k) == kKeyNames[i]) s = static_cast<Slot>(i);
+    if (s == Slot::Document || (f.ctx == Ctx::Light && light_typed_ && !light_allows(light_.type, s)))
+      fail(path(depth_ - 1), "unknown key " + json_quoted(k));
+    // Duplicate keys are ambiguous (JSON parsers disagree on which one wins).
+    if (f.seen & bit(s)) fail(path(depth_ - 1), "duplicate key " + json_quoted(k));
+    f.seen |= bit(s);
+    f.key = s;
+    return true;
+  }
+
+  bool end_object() override {
+    const Frame f = pop();
+    if (f.ctx == Ctx::Sphere) finish_sphere(f.seen);
+    if (f.ctx == Ctx::Light) finish_light(f.seen);
+    next_element();
+    return true;
+  }
+
+  bool start_array(std::size_t) override {
+    const Slot s = enter_value();
+    switch (s) {
+      case Slot::Spheres:
+        push(Ctx::Spheres);
+        break;
+      case Slot::Lights:
+        push(Ctx::Lights);
+        break;
+      case Slot::Rotation:
+        push(Ctx::Rotation);
+        break;
+      case Slot::Viewport:
+      case Slot::Background:
+      case Slot::Position:
+      case Slot::Row:
+      case Slot::Center:
+      case Slot::Color:
+      case Slot::LightPosition:
+      case Slot::Direction:
+        numbers_size_ = s == Slot::Viewport ? 2 : 3;
+        push(Ctx::Numbers);
+        break;
+      default:
+        type_error(s, "array");
+    }
+    return true;
+  }
+
+  bool end_array() override {
+    const Frame f = pop();
+    // value_path() and slot() now name the array itself.
+    if (f.ctx == Ctx::Numbers) finish_numbers(slot(), f.count);
+    if (f.ctx == Ctx::Rotation && f.count != 3) fail(value_path(), "expected a 3x3 array of numbers");
+    if (f.ctx == Ctx::Lights) {
+      double total = 0;
+      for (const auto& l : scene_.lights) total += l.intensity;
+      if (total > kMaxTotalIntensity)
+        fail(value_path(), "the intensities add up to " + fmt(total) + ", more than " + fmt(kMaxTotalIntensity) +
+                               " (colours would overflow float32)");
+    }
+    next_element();
+    return true;
+  }
+
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
+    std::string msg = e.what();
+    // nlohmann prefixes "[json.exception.parse_error.101] "; keep the rest.
+    if (const auto pos = msg.find("] "); pos != std::string::npos) msg = msg.substr(pos + 2);
+    // "...; last read: '<token>'[; expected ...]": the token may be a whole
+    // unterminated string; cut it (not inside a UTF-8 sequence).
+    const std::string marker = "; last read: '";
+    if (const size_t at = msg.find(marker); at != std::string::npos) {
+      constexpr size_t kMaxEcho = 64;
+      const size_t start = at + marker.size();
+      size_t end = msg.rfind("'; expected ");
+      if (end == std::string::npos || end < start) end = msg.back() == '\'' ? msg.size() - 1 : start;
+      if (end - start > kMaxEcho) {
+        size_t cut = start + kMaxEcho;
+        // A UTF-8 sequence has at most 3 continuation bytes.
+        while (cut > start + kMaxEcho - 3 && (static_cast<unsigned char>(msg[cut]) & 0xC0) == 0x80) --cut;
+        msg = msg.substr(0, cut) + "...' (" + std::to_string(end - start) + " bytes)" + msg.substr(end + 1);
       }
     }
-    if (j.contains("viewport")) {
-      const json& v = j["viewport"];
-      if (!v.is_array() || v.size() != 2) fail("camera.viewport", "expected an array of 2 numbers");
-      for (int k = 0; k < 2; ++k)
-        if (!(number(v[k], "camera.viewport[" + std::to_string(k) + "]") > 0))
-          fail("camera.viewport", "sizes must be > 0");
-      c.viewport_w = size(v[0], "camera.viewport[0]", "must be > 0");
-      c.viewport_h = size(v[1], "camera.viewport[1]", "must be > 0");
+    // A literal such as 1e400 is valid JSON but overflows a double (out_of_range.406).
+    const bool overflow = dynamic_cast<const json::out_of_range*>(&e) != nullptr;
+    throw UserError(name_ + (overflow ? ": number out of range: " : ": malformed JSON: ") + msg);
+  }
+
+ private:
+  static constexpr size_t kMaxDepth = 4;
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw UserError(name_ + ": " + (where.empty() ? "" : where + ": ") + what);
+  }
+
+  // The path of the value frame n - 1 is reading ("spheres[3].center"); the
+  // frames below it name the containers it is in.
+  std::string path(size_t n) const {
+    std::string p;
+    for (size_t i = 0; i < n; ++i) {
+      const Frame& f = stack_[i];
+      if (is_object(f.ctx)) {
+        if (f.key == Slot::Document) break;  // no key read yet
+        if (!p.empty()) p += '.';
+        p += kKeyNames[static_cast<unsigned>(f.key)];
+      } else {
+        p += '[' + std::to_string(f.count) + ']';
+      }
     }
-    if (j.contains("projection_plane_d")) {
-      c.projection_plane_d = size(j["projection_plane_d"], "camera.projection_plane_d", "must be > 0");
+    return p;
+  }
+  std::string value_path() const { return path(depth_); }
+
+  Frame& top() { return stack_[depth_ - 1]; }
+  void push(Ctx c) {
+    // Not reached: the format nests kMaxDepth deep and every other container is a type error.
+    if (depth_ == kMaxDepth) fail(value_path(), "nested deeper than " + std::to_string(kMaxDepth) + " levels");
+    stack_[depth_++] = Frame{c};
+  }
+  Frame pop() { return stack_[--depth_]; }
+  // After a value: the next element of its array.
+  void next_element() {
+    if (depth_ > 0 && !is_object(top().ctx)) ++top().count;
+  }
+
+  // What the next value is.
+  Slot slot() const {
+    if (depth_ == 0) return Slot::Document;
+    const Frame& f = stack_[depth_ - 1];
+    switch (f.ctx) {
+      case Ctx::Spheres:
+        return Slot::Sphere;
+      case Ctx::Lights:
+        return Slot::Light;
+      case Ctx::Rotation:
+        return Slot::Row;
+      case Ctx::Numbers:
+        return Slot::Number;
+      default:
+        return f.key;
+    }
+  }
+  // The same, at the start of a value: one element too many is an error.
+  Slot enter_value() {
+    if (depth_ > 0) {
+      const Frame& f = top();
+      if (f.ctx == Ctx::Numbers && f.count >= numbers_size_) fail(path(depth_ - 1), numbers_message());
+      if (f.ctx == Ctx::Rotation && f.count >= 3) fail(path(depth_ - 1), "expected a 3x3 array of numbers");
+      if (f.ctx == Ctx::Spheres && f.count >= limits_.spheres)
+        fail(path(depth_ - 1), "more than " + std::to_string(limits_.spheres) + " spheres, the most clrt loads");
+      if (f.ctx == Ctx::Lights && f.count >= limits_.lights)
+        fail(path(depth_ - 1), "more than " + std::to_string(limits_.lights) + " lights, the most clrt loads");
+    }
+    return slot();
+  }
+  std::string numbers_message() const {
+    return numbers_size_ == 2 ? "expected an array of 2 numbers" : "expected an array of 3 numbers";
+  }
+
+  // A value of type `got` where slot `s` wants another.
+  [[noreturn]] void type_error(Slot s, const std::string& got) const {
+    switch (s) {
+      case Slot::Document:
+      case Slot::Camera:
+      case Slot::Sphere:
+      case Slot::Light:
+        fail(value_path(), "expected an object, got " + got);
+      case Slot::Spheres:
+      case Slot::Lights:
+        fail(value_path(), "expected an array, got " + got);
+      case Slot::Rotation:
+        fail(value_path(), "expected a 3x3 array of numbers");
+      case Slot::Viewport:
+        fail(value_path(), "expected an array of 2 numbers");
+      case Slot::Background:
+      case Slot::Position:
+      case Slot::Row:
+      case Slot::Center:
+      case Slot::Color:
+      case Slot::LightPosition:
+      case Slot::Direction:
+        fail(value_path(), "expected an array of 3 numbers");
+      case Slot::RecursionDepth:
+        fail(value_path(), "expected an integer, got " + got);
+      case Slot::Type:
+        fail(value_path(), "expected a string");
+      default:
+        fail(value_path(), "expected a number, got " + got);
     }
   }
 
-  Sphere parse_sphere(const json& j, const std::string& w) const {
-    only_keys(j, w, {"center", "radius", "color", "specular", "reflective"});
-    Sphere s;
-    if (!j.contains("center")) fail(w, "missing \"center\"");
-    if (!j.contains("radius")) fail(w, "missing \"radius\"");
-    if (!j.contains("color")) fail(w, "missing \"color\"");
-    s.center = position(j["center"], w + ".center");
-    s.radius = size(j["radius"], w + ".radius", "must be > 0");
-    s.color = color(j["color"], w + ".color");
-    if (j.contains("specular")) {
-      s.specular = number(j["specular"], w + ".specular");
-      if (s.specular != -1 && s.specular < 0)
-        fail(w + ".specular", "must be -1 (matte) or >= 0 (got " + fmt(s.specular) + ")");
-      if (s.specular > kMaxSpecular)
-        fail(w + ".specular", "must be at most " + fmt(kMaxSpecular) + " (got " + fmt(s.specular) + ")");
-    }
-    if (j.contains("reflective")) s.reflective = number_in(j["reflective"], w + ".reflective", 0, 1);
-    return s;
+  template <typename Int>
+  bool integer(Int v) {
+    const Slot s = enter_value();
+    if (s != Slot::RecursionDepth) return number(s, static_cast<double>(v));
+    // Compared as read: an unsigned above LLONG_MAX must not wrap.
+    bool in_range = v <= static_cast<Int>(CLRT_MAX_DEPTH);
+    if constexpr (std::is_signed_v<Int>) in_range = in_range && v >= 0;
+    if (!in_range)
+      fail(value_path(), "must be in [0, " + std::to_string(CLRT_MAX_DEPTH) + "] (got " + std::to_string(v) + ")");
+    scene_.recursion_depth = static_cast<int>(v);
+    return true;
   }
 
-  Light parse_light(const json& j, const std::string& w) const {
-    if (!j.is_object()) fail(w, "expected an object, got " + type_of(j));
-    if (!j.contains("type")) fail(w, "missing \"type\"");
-    if (!j["type"].is_string()) fail(w + ".type", "expected a string");
-    const std::string type = j["type"].get<std::string>();
-    Light l;
+  bool number(Slot s, double v) {
+    switch (s) {
+      case Slot::Number:
+      case Slot::Epsilon:
+      case Slot::Distance:
+      case Slot::Radius:
+      case Slot::Specular:
+      case Slot::Reflective:
+      case Slot::Intensity:
+        break;
+      default:
+        type_error(s, "number");
+    }
+    if (!std::isfinite(v)) fail(value_path(), "number is not finite");  // not reached: the parser rejects them
+    switch (s) {
+      case Slot::Number:
+        numbers_[top().count] = v;
+        break;
+      case Slot::Epsilon:
+        scene_.epsilon = in_range(v, 0, kMaxLength);
+        break;
+      case Slot::Distance:
+        scene_.camera.projection_plane_d = size(v);
+        break;
+      case Slot::Radius:
+        sphere_.radius = size(v);
+        break;
+      case Slot::Specular:
+        if (v != -1 && v < 0) fail(value_path(), "must be -1 (matte) or >= 0 (got " + fmt(v) + ")");
+        if (v > kMaxSpecular) fail(value_path(), "must be at most " + fmt(kMaxSpecular) + " (got " + fmt(v) + ")");
+        sphere_.specular = v;
+        break;
+      case Slot::Reflective:
+        sphere_.reflective = in_range(v, 0, 1);
+        break;
+      default:  // Slot::Intensity
+        light_.intensity = in_range(v, 0, 1e30);
+        break;
+    }
+    next_element();
+    return true;
+  }
+
+  // ---- checks of one value; `index` names a component of it ----
+  double in_range(double v, double lo, double hi) const {
+    if (v < lo || v > hi) fail(value_path(), "must be in [" + fmt(lo) + ", " + fmt(hi) + "] (got " + fmt(v) + ")");
+    return v;
+  }
+  // A size in [kMinLength, kMaxLength].
+  double size(double v, const char* index = "") const {
+    if (!(v > 0)) fail(value_path() + index, "must be > 0 (got " + fmt(v) + ")");
+    if (v < kMinLength || v > kMaxLength)
+      fail(value_path() + index, "must be in [" + fmt(kMinLength) + ", " + fmt(kMaxLength) +
+                                     "], the range clrt renders in float32 (got " + fmt(v) + ")");
+    return v;
+  }
+  // A coordinate within the float32-safe range (scene.hpp).
+  Vec3 position(Vec3 v) const {
+    const double c[3] = {v.x, v.y, v.z};
+    for (int k = 0; k < 3; ++k)
+      if (std::fabs(c[k]) > kMaxLength)
+        fail(value_path() + "[" + std::to_string(k) + "]",
+             "must be within ±" + fmt(kMaxLength) + ", the range clrt renders in float32 (got " + fmt(c[k]) + ")");
+    return v;
+  }
+  Vec3 color(Vec3 c) const {
+    for (double v : {c.x, c.y, c.z})
+      if (v < 0 || v > 255) fail(value_path(), "color components must be in [0, 255] (got " + fmt(v) + ")");
+    return c;
+  }
+
+  // ---- a container read to its end (value_path() names it) ----
+  void finish_numbers(Slot s, size_t count) {
+    if (count != numbers_size_) fail(value_path(), numbers_message());
+    const Vec3 v{numbers_[0], numbers_[1], numbers_[2]};
+    switch (s) {
+      case Slot::Background:
+        scene_.background = color(v);
+        break;
+      case Slot::Position:
+        scene_.camera.position = position(v);
+        break;
+      case Slot::Viewport:
+        for (int k = 0; k < 2; ++k)
+          if (!(numbers_[k] > 0)) fail(value_path(), "sizes must be > 0");
+        scene_.camera.viewport_w = size(numbers_[0], "[0]");
+        scene_.camera.viewport_h = size(numbers_[1], "[1]");
+        break;
+      case Slot::Row: {
+        const size_t row = top().count;  // of the rotation
+        scene_.camera.rotation[row * 3 + 0] = v.x;
+        scene_.camera.rotation[row * 3 + 1] = v.y;
+        scene_.camera.rotation[row * 3 + 2] = v.z;
+        break;
+      }
+      case Slot::Center:
+        sphere_.center = position(v);
+        break;
+      case Slot::Color:
+        sphere_.color = color(v);
+        break;
+      case Slot::LightPosition:
+        light_position_ = position(v);
+        break;
+      default:  // Slot::Direction
+        light_direction_ = v;
+        break;
+    }
+  }
+
+  void finish_sphere(uint32_t seen) {
+    if (!(seen & bit(Slot::Center))) fail(value_path(), "missing \"center\"");
+    if (!(seen & bit(Slot::Radius))) fail(value_path(), "missing \"radius\"");
+    if (!(seen & bit(Slot::Color))) fail(value_path(), "missing \"color\"");
+    scene_.spheres.push_back(sphere_);
+  }
+
+  void light_type(const std::string& type) {
     if (type == "ambient") {
-      only_keys(j, w, {"type", "intensity"});
-      l.type = LightType::Ambient;
+      light_.type = LightType::Ambient;
     } else if (type == "point") {
-      only_keys(j, w, {"type", "intensity", "position"});
-      l.type = LightType::Point;
-      if (!j.contains("position")) fail(w, "point light needs \"position\"");
-      l.vec = position(j["position"], w + ".position");
+      light_.type = LightType::Point;
     } else if (type == "directional") {
-      only_keys(j, w, {"type", "intensity", "direction"});
-      l.type = LightType::Directional;
-      if (!j.contains("direction")) fail(w, "directional light needs \"direction\"");
-      l.vec = vec3(j["direction"], w + ".direction");
-      if (l.vec.x == 0 && l.vec.y == 0 && l.vec.z == 0) fail(w + ".direction", "must not be the zero vector");
+      light_.type = LightType::Directional;
+    } else {
+      fail(value_path(), "unknown light type " + json_quoted(type) + " (expected ambient, point or directional)");
+    }
+    light_typed_ = true;
+    // Keys read before the type (later ones are checked as they come).
+    for (Slot k : {Slot::Direction, Slot::LightPosition})
+      if ((top().seen & bit(k)) && !light_allows(light_.type, k))
+        fail(path(depth_ - 1), "unknown key " + json_quoted(std::string(kKeyNames[static_cast<unsigned>(k)])));
+  }
+
+  void finish_light(uint32_t seen) {
+    if (!(seen & bit(Slot::Type))) fail(value_path(), "missing \"type\"");
+    if (light_.type == LightType::Point) {
+      if (!(seen & bit(Slot::LightPosition))) fail(value_path(), "point light needs \"position\"");
+      light_.vec = light_position_;
+    }
+    if (light_.type == LightType::Directional) {
+      if (!(seen & bit(Slot::Direction))) fail(value_path(), "directional light needs \"direction\"");
+      Vec3 d = light_direction_;
+      if (d.x == 0 && d.y == 0 && d.z == 0) fail(value_path() + ".direction", "must not be the zero vector");
       // Rescaled by a power of two so the largest component lies in
       // [0.5, 1): [1e-300, 1e-300, -1e-300] has a squared length of 0 in
       // double, [1e300, 0, 0] one of inf, [0, 1e39, -1e39] overflows float.
@@ -221,98 +556,99 @@ class Parser {
       // results for the shipped scenes) and idempotent (a scene written back
       // by scene_to_json parses to the same values).
       int e = 0;
-      (void)std::frexp(std::max({std::fabs(l.vec.x), std::fabs(l.vec.y), std::fabs(l.vec.z)}), &e);
-      l.vec = {std::ldexp(l.vec.x, -e), std::ldexp(l.vec.y, -e), std::ldexp(l.vec.z, -e)};
-    } else {
-      fail(w + ".type", "unknown light type " + quoted(type) + " (expected ambient, point or directional)");
+      (void)std::frexp(std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)}), &e);
+      light_.vec = {std::ldexp(d.x, -e), std::ldexp(d.y, -e), std::ldexp(d.z, -e)};
     }
-    if (!j.contains("intensity")) fail(w, "missing \"intensity\"");
-    l.intensity = number_in(j["intensity"], w + ".intensity", 0, 1e30);
-    return l;
+    if (!(seen & bit(Slot::Intensity))) fail(value_path(), "missing \"intensity\"");
+    scene_.lights.push_back(light_);
+  }
+
+  const std::string& name_;
+  const SceneLimits limits_;
+  Scene scene_;
+  std::array<Frame, kMaxDepth> stack_;
+  size_t depth_ = 0;
+  // The vector, sphere and light being read.
+  std::array<double, 3> numbers_{};
+  size_t numbers_size_ = 3;
+  Sphere sphere_;
+  Light light_;
+  bool light_typed_ = false;
+  Vec3 light_position_, light_direction_;
+};
+
+// A stream's bytes in chunks, for the parser: a NUL byte (not JSON; nlohmann
+// would take it for the end of the text) or more than max_bytes throw
+// UserError as soon as they are read, so that /dev/zero or a huge file
+// cannot exhaust memory or time.
+class LimitedReader final : public std::streambuf {
+ public:
+  LimitedReader(std::istream& in, const std::string& name, size_t max_bytes)
+      : in_(in), name_(name), max_bytes_(max_bytes), buffer_(new char[kChunk]) {}
+
+ protected:
+  int_type underflow() override {
+    if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+    in_.read(buffer_.get(), kChunk);
+    const auto n = static_cast<size_t>(in_.gcount());
+    if (in_.bad()) throw UserError(name_ + ": cannot read scene file");
+    if (n == 0) return traits_type::eof();
+    if (const void* nul = std::memchr(buffer_.get(), 0, n))
+      throw UserError(name_ + ": malformed JSON: NUL byte at offset " +
+                      std::to_string(read_ + size_t(static_cast<const char*>(nul) - buffer_.get())));
+    read_ += n;
+    if (read_ > max_bytes_) too_large(name_, max_bytes_);
+    setg(buffer_.get(), buffer_.get(), buffer_.get() + n);
+    return traits_type::to_int_type(*gptr());
   }
 
  private:
-  std::string name_;
-};
-
-// Finds the first key that an object repeats (stops there, or at a syntax
-// error, which json::parse then reports).
-struct DuplicateKeys : json::json_sax_t {
-  std::vector<std::unordered_set<std::string>> open_objects;
-  std::string duplicate;  // the first repeated key, "" if none
-
-  bool null() override { return true; }
-  bool boolean(bool) override { return true; }
-  bool number_integer(number_integer_t) override { return true; }
-  bool number_unsigned(number_unsigned_t) override { return true; }
-  bool number_float(number_float_t, const string_t&) override { return true; }
-  bool string(string_t&) override { return true; }
-  bool binary(binary_t&) override { return true; }
-  bool start_object(std::size_t) override {
-    open_objects.emplace_back();
-    return true;
-  }
-  bool key(string_t& name) override {
-    if (open_objects.empty() || open_objects.back().insert(name).second) return true;
-    duplicate = name;
-    return false;
-  }
-  bool end_object() override {
-    if (!open_objects.empty()) open_objects.pop_back();
-    return true;
-  }
-  bool start_array(std::size_t) override { return true; }
-  bool end_array() override { return true; }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+  static constexpr size_t kChunk = size_t(1) << 16;
+  std::istream& in_;
+  const std::string& name_;
+  const size_t max_bytes_;
+  size_t read_ = 0;
+  std::unique_ptr<char[]> buffer_;
 };
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& name) {
+Scene parse_scene(const std::string& text, const std::string& name, const SceneLimits& limits) {
+  if (text.size() > limits.bytes) too_large(name, limits.bytes);
   // A NUL byte is not JSON; nothing after one may be silently dropped.
-  if (const size_t nul = text.find('\0'); nul != std::string::npos)
-    throw UserError(name + ": malformed JSON: NUL byte at offset " + std::to_string(nul));
-  // Duplicate keys are ambiguous (JSON parsers disagree on which one wins):
-  // reject them, per object, in a SAX pass of their own (nlohmann's parse
-  // with a callback is quadratic in the size of an array: 52 s instead of
-  // 0.6 s for 400 000 spheres).
-  DuplicateKeys duplicates;
-  json::sax_parse(text, &duplicates);
-  if (!duplicates.duplicate.empty()) throw UserError(name + ": duplicate key " + Parser::quoted(duplicates.duplicate));
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {
-    std::string msg = e.what();
-    // nlohmann prefixes "[json.exception.parse_error.101] "; keep the rest.
-    auto pos = msg.find("] ");
-    if (pos != std::string::npos) msg = msg.substr(pos + 2);
-    // A literal such as 1e400 parses but overflows a double (out_of_range.406).
-    bool overflow = dynamic_cast<const json::out_of_range*>(&e) != nullptr;
-    throw UserError(name + (overflow ? ": number out of range: " : ": malformed JSON: ") + msg);
-  }
-  return Parser(name).parse(root);
+  if (const void* nul = std::memchr(text.data(), 0, text.size()))
+    throw UserError(name + ": malformed JSON: NUL byte at offset " +
+                    std::to_string(static_cast<const char*>(nul) - text.data()));
+  SceneBuilder builder(name, limits);
+  if (!json::sax_parse(text, &builder)) throw UserError(name + ": malformed JSON");  // not reached: errors throw
+  return builder.finish();
 }
 
-Scene load_scene(const std::string& path) {
+Scene parse_scene(std::istream& in, const std::string& name, const SceneLimits& limits) {
+  LimitedReader reader(in, name, limits.bytes);
+  std::istream stream(&reader);
+  SceneBuilder builder(name, limits);
+  if (!json::sax_parse(stream, &builder)) throw UserError(name + ": malformed JSON");  // not reached: errors throw
+  return builder.finish();
+}
+
+Scene load_scene(const std::string& path, const SceneLimits& limits) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw UserError(path + ": cannot open scene file: is a directory");
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status)) throw UserError(path + ": cannot open scene file: is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UserError(path + ": cannot open scene file: " + std::strerror(errno));
-  // Read in chunks and stop past kMaxSceneBytes, so that /dev/zero or a huge
-  // file cannot exhaust memory.
-  std::string text;
-  char chunk[1 << 16];
-  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
-    text.append(chunk, static_cast<size_t>(in.gcount()));
-    if (text.size() > kMaxSceneBytes)
-      throw UserError(path + ": scene file is larger than " + std::to_string(kMaxSceneBytes >> 20) + " MiB");
+  // A regular file over the limit fails before it is read; anything else (a
+  // FIFO, /dev/zero) is counted as it is read.
+  if (std::filesystem::is_regular_file(status)) {
+    const auto bytes = std::filesystem::file_size(path, ec);
+    if (!ec && bytes > limits.bytes) too_large(path, limits.bytes);
   }
-  if (in.bad()) throw UserError(path + ": cannot read scene file");
-  return parse_scene(text, path);
+  return parse_scene(in, path, limits);
 }
 
 std::string scene_to_json(const Scene& s, JsonStyle style) {
+  const bool pretty = style == JsonStyle::Pretty;
   auto v3 = [](Vec3 v) { return json::array({v.x, v.y, v.z}); };
   json root;
   const auto& r = s.camera.rotation;
@@ -324,13 +660,6 @@ std::string scene_to_json(const Scene& s, JsonStyle style) {
   root["background"] = v3(s.background);
   root["recursion_depth"] = s.recursion_depth;
   root["epsilon"] = s.epsilon;
-  root["spheres"] = json::array();
-  for (const auto& sp : s.spheres)
-    root["spheres"].push_back({{"center", v3(sp.center)},
-                               {"radius", sp.radius},
-                               {"color", v3(sp.color)},
-                               {"specular", sp.specular},
-                               {"reflective", sp.reflective}});
   root["lights"] = json::array();
   for (const auto& l : s.lights) {
     json jl = {{"intensity", l.intensity}};
@@ -339,7 +668,38 @@ std::string scene_to_json(const Scene& s, JsonStyle style) {
     if (l.type == LightType::Directional) jl["type"] = "directional", jl["direction"] = v3(l.vec);
     root["lights"].push_back(jl);
   }
-  return style == JsonStyle::Pretty ? root.dump(2) : root.dump();
+  root["spheres"] = json::array();
+  std::string text = pretty ? root.dump(2) : root.dump();
+  if (s.spheres.empty()) return text;
+  // The spheres are written one at a time (a document tree of a million
+  // spheres takes about 1.4 GB), with the same text json::dump gives:
+  // "spheres" sorts last among the keys, so the text ends in its "[]".
+  const size_t at = text.rfind("[]");
+  const std::string tail = text.substr(at + 2);  // "}" or "\n}"
+  text.resize(at);
+  text += '[';
+  json item = json::object();
+  for (size_t i = 0; i < s.spheres.size(); ++i) {
+    const Sphere& sp = s.spheres[i];
+    item["center"] = v3(sp.center);
+    item["radius"] = sp.radius;
+    item["color"] = v3(sp.color);
+    item["specular"] = sp.specular;
+    item["reflective"] = sp.reflective;
+    if (pretty) {
+      // An element of the root's "spheres": indented two levels deeper.
+      text += i == 0 ? "\n    " : ",\n    ";
+      for (char c : item.dump(2)) {
+        text += c;
+        if (c == '\n') text += "    ";
+      }
+    } else {
+      if (i > 0) text += ',';
+      text += item.dump();
+    }
+  }
+  text += pretty ? "\n  ]" : "]";
+  return text + tail;
 }
 
 }  // namespace clrt

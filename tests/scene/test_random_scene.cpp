@@ -37,7 +37,7 @@ TEST_CASE("clrt generate writes a scene clrt reads; bad counts are bad input", "
   REQUIRE(r.status == 0);
   const Scene s = load_scene(dir / "g.json");
   CHECK(s.spheres.size() == 51);
-  for (const char* bad : {"-1", "500001", "many"}) {
+  for (const char* bad : {"-1", "2000001", "many"}) {
     auto b = clrt_test::run_clrt({"generate", "--spheres", bad, "-o", dir / "h.json"});
     CHECK(b.status == 2);
     CHECK(b.one_line_error());
