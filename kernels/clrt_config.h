@@ -18,6 +18,8 @@
  *   CLRT_COUNT_RAYS      write per-pixel ray counters
  *   CLRT_LANES           pixels per work-item: 1 (when absent), 4, 8 or 16;
  *                        the host picks it (default_lanes(), build_options.hpp)
+ *   CLRT_PACKET_ROWS     rows of the work-item's block of pixels (1 when
+ *                        absent; packet_rows(), build_options.hpp)
  *
  * Measurement knobs, never set by the host (--cl-options, see
  * docs/performance.md): CLRT_SHADOW_ALL_SPHERES, CLRT_LIB_POW. */
@@ -79,6 +81,13 @@
 
 #ifndef CLRT_LANES
 #define CLRT_LANES 1
+#endif
+#ifndef CLRT_PACKET_ROWS
+#define CLRT_PACKET_ROWS 1
+#endif
+#define CLRT_PACKET_COLS (CLRT_LANES / CLRT_PACKET_ROWS)
+#if CLRT_PACKET_COLS * CLRT_PACKET_ROWS != CLRT_LANES
+#error "CLRT_PACKET_ROWS must divide CLRT_LANES"
 #endif
 
 /* Helpers are forced inline (PoCL otherwise keeps intersect() out of line,

@@ -1,10 +1,11 @@
 /* trace.cl - the render kernel: primary ray, shadow rays and bounded-depth
  * reflections with an explicit stack (no recursion), per pixel.
  *
- * A work-item shades CLRT_LANES horizontally adjacent pixels, one per SIMD
- * lane (clrt_lanes.h); every lane runs exactly the per-pixel algorithm - its
- * own ray, its own explicit stack (lane j of each frame) - with branches
- * turned into per-lane masks.
+ * A work-item shades a block of CLRT_LANES pixels, CLRT_PACKET_COLS wide and
+ * CLRT_PACKET_ROWS high, one per SIMD lane (clrt_lanes.h; lanes beyond the
+ * tile's edge are traced and not stored); every lane runs exactly the
+ * per-pixel algorithm - its own ray, its own explicit stack (lane j of each
+ * frame) - with branches turned into per-lane masks.
  *
  * The parts, each included once (host/cl/kernel_source.cpp expands them):
  *   clrt_layout.h     structs and codes shared with the host
@@ -28,19 +29,21 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
                      __global clrt_ray_counts* ray_counts, const int x0, const int y0, const int tile_w,
                      const int tile_h, __global const clrt_bvh_node* nodes, __global const int* primitives) {
   const int gx = (int)get_global_id(0), gy = (int)get_global_id(1);
-  const int px = gx * CLRT_LANES; /* first pixel of this work-item in the tile */
-  if (px >= tile_w || gy >= tile_h) return;
+  /* first pixel of this work-item in the tile: its lanes are a block of
+   * CLRT_PACKET_COLS x CLRT_PACKET_ROWS pixels, row by row */
+  const int px = gx * CLRT_PACKET_COLS, py = gy * CLRT_PACKET_ROWS;
+  if (px >= tile_w || py >= tile_h) return;
   const int W = params->width, H = params->height;
-  const lint col = x0 + px + LANE_IOTA;
-  const int row = y0 + gy;
+  const lint col = x0 + px + LANE_IOTA % CLRT_PACKET_COLS;
+  const lint row = y0 + py + LANE_IOTA / CLRT_PACKET_COLS;
   const lint x = col - W / 2;
-  const int y = H / 2 - 1 - row;
+  const lint y = H / 2 - 1 - row;
   lane_ray_counts counts = {(lint)1, (lint)0, (lint)0, (lint)0}; /* one primary ray per lane */
 
   /* CanvasToViewport, then the camera rotation. */
   const lreal dx = TO_LREAL(x) * REAL_FROM_HI_LO(params->viewport[0], params->viewport_lo[0]) / (real)W;
-  const real dy = (real)y * REAL_FROM_HI_LO(params->viewport[1], params->viewport_lo[1]) / (real)H,
-             dz = REAL_FROM_HI_LO(params->proj_d, params->proj_d_lo);
+  const lreal dy = TO_LREAL(y) * REAL_FROM_HI_LO(params->viewport[1], params->viewport_lo[1]) / (real)H;
+  const real dz = REAL_FROM_HI_LO(params->proj_d, params->proj_d_lo);
   real m[9];
   for (int k = 0; k < 9; ++k) m[k] = REAL_FROM_HI_LO(params->rotation[k], params->rotation_lo[k]);
   vec3 D = v3(m[0] * dx + m[1] * dy + m[2] * dz, m[3] * dx + m[4] * dy + m[5] * dz, m[6] * dx + m[7] * dy + m[8] * dz);
@@ -65,7 +68,8 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
   for (int bounce = 0; bounce <= depth; ++bounce) {
     lreal t;
     lint tests = 0;
-    const lint hit = closest_intersection(&O, &D, tmin, REAL_INFINITY, self, params, spheres, nodes, primitives, &t, &tests);
+    const lint hit =
+        closest_intersection(&O, &D, tmin, REAL_INFINITY, self, params, spheres, nodes, primitives, &t, &tests);
     COUNT_IN_LANES(counts.sphere_tests, alive, tests);
     const lint miss = alive & (hit < 0);
     result = vsel(miss, background, result);
@@ -137,8 +141,9 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
 #endif
 #endif
   for (int j = 0; j < CLRT_LANES; ++j) {
-    if (px + j >= tile_w) break;
-    const int idx = gy * tile_w + px + j;
+    const int jx = px + j % CLRT_PACKET_COLS, jy = py + j / CLRT_PACKET_COLS;
+    if (jx >= tile_w || jy >= tile_h) continue;
+    const int idx = jy * tile_w + jx;
     out[idx * 3 + 0] = red[j];
     out[idx * 3 + 1] = green[j];
     out[idx * 3 + 2] = blue[j];

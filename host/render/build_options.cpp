@@ -14,6 +14,11 @@ int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev) {
   return dev.native_float_width >= 16 ? 16 : 8;
 }
 
+int packet_rows(const KernelConfig& cfg) {
+  const int lanes = kernel_lanes(cfg);
+  return lanes >= 16 ? 4 : lanes >= 4 ? 2 : 1;
+}
+
 int kernel_lanes(const KernelConfig& cfg) {
   if (cfg.lanes == 0) return cfg.specialize && cfg.precision != Precision::Fp64 ? 8 : 1;
   if (cfg.lanes != 1 && cfg.lanes != 4 && cfg.lanes != 8 && cfg.lanes != 16)
@@ -67,6 +72,7 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
   if (cfg.precision == Precision::Fast) options.push_back("-cl-fast-relaxed-math");
   if (cfg.count_rays) options.push_back("-DCLRT_COUNT_RAYS");
   if (int lanes = kernel_lanes(cfg); lanes > 1) options.push_back(define("CLRT_LANES", lanes));
+  if (int rows = packet_rows(cfg); rows > 1) options.push_back(define("CLRT_PACKET_ROWS", rows));
   if (uses_bvh(cfg.accel, features.sphere_count, cfg.precision)) options.push_back("-DCLRT_BVH");
   if (cfg.specialize) add_specialization(features, options);
   if (!cfg.extra_options.empty()) options.push_back(cfg.extra_options);

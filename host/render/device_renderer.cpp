@@ -107,8 +107,10 @@ LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst)
   kernel_.setArg(9, cl_int(h));
   kernel_.setArg(10, nodes_);
   kernel_.setArg(11, primitives_);
-  // Each work-item shades kernel_lanes(config_) adjacent pixels of a row.
-  const size_t lanes = size_t(kernel_lanes(config_)), gw = (size_t(w) + lanes - 1) / lanes;
+  // Each work-item shades a block of kernel_lanes(config_) pixels,
+  // packet_rows(config_) of them high.
+  const size_t rows = size_t(packet_rows(config_)), cols = size_t(kernel_lanes(config_)) / rows;
+  const size_t gw = (size_t(w) + cols - 1) / cols, gh = (size_t(h) + rows - 1) / rows;
   // Always an explicit local size: with NullRange the implementation picks
   // one from the global size, which changes with every band height, and
   // PoCL compiles a new work-group function for each (measured: 1.2 s per
@@ -118,8 +120,8 @@ LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst)
   // Pad the global size to a multiple of the local size, in size_t (no
   // overflow for any tile and local size the checks let through); the
   // kernel ignores work-items outside the tile. Every pixel must be covered.
-  const size_t global_x = (gw + lx - 1) / lx * lx, global_y = (size_t(h) + ly - 1) / ly * ly;
-  if (global_x < gw || global_y < size_t(h)) throw std::logic_error("launch does not cover the tile");
+  const size_t global_x = (gw + lx - 1) / lx * lx, global_y = (gh + ly - 1) / ly * ly;
+  if (global_x < gw || global_y < gh) throw std::logic_error("launch does not cover the tile");
   cl::NDRange global(global_x, global_y), local(lx, ly);
   const LaunchTime time = run_timed(queue_, kernel_, global, local);
 

@@ -157,11 +157,10 @@ TEST_CASE("features become one -D list, joined for the build and the cache key",
   const KernelFeatures f = kernel_features(demo, 3);
   KernelConfig cfg;  // robust, specialized, lanes not yet resolved by a device: 8
   const std::vector<std::string> expected = {
-      "-cl-std=CL1.2",         "-DCLRT_PRECISION=2",      "-cl-denorms-are-zero",
-      "-DCLRT_LANES=8",        "-DCLRT_SPECIALIZED",      "-DCLRT_DEPTH=3",
-      "-DCLRT_HAS_AMBIENT=1",  "-DCLRT_HAS_POINT=1",      "-DCLRT_HAS_DIRECTIONAL=1",
-      "-DCLRT_HAS_SPECULAR=1", "-DCLRT_HAS_REFLECTIVE=1", "-DCLRT_N_SPHERES=4",
-      "-DCLRT_N_LIGHTS=3",     "-DCLRT_LIGHT_TYPES=0,1,2"};
+      "-cl-std=CL1.2",        "-DCLRT_PRECISION=2",       "-cl-denorms-are-zero",    "-DCLRT_LANES=8",
+      "-DCLRT_PACKET_ROWS=2", "-DCLRT_SPECIALIZED",       "-DCLRT_DEPTH=3",          "-DCLRT_HAS_AMBIENT=1",
+      "-DCLRT_HAS_POINT=1",   "-DCLRT_HAS_DIRECTIONAL=1", "-DCLRT_HAS_SPECULAR=1",   "-DCLRT_HAS_REFLECTIVE=1",
+      "-DCLRT_N_SPHERES=4",   "-DCLRT_N_LIGHTS=3",        "-DCLRT_LIGHT_TYPES=0,1,2"};
   CHECK(build_option_list(cfg, f, false) == expected);
   // The old entry point is the composition of the two steps.
   CHECK(build_options(cfg, demo, 3, false) == join_build_options(expected));
@@ -182,9 +181,10 @@ TEST_CASE("features become one -D list, joined for the build and the cache key",
     c.lanes = 16;
     c.specialize = false;
     c.extra_options = "-DCLRT_LIB_POW -DCLRT_SHADOW_ALL_SPHERES";
-    CHECK(build_option_list(c, f, false) ==
-          std::vector<std::string>{"-cl-std=CL1.2", "-DCLRT_PRECISION=3", "-cl-fast-relaxed-math", "-DCLRT_COUNT_RAYS",
-                                   "-DCLRT_LANES=16", "-DCLRT_LIB_POW -DCLRT_SHADOW_ALL_SPHERES"});
+    CHECK(build_option_list(c, f, false) == std::vector<std::string>{"-cl-std=CL1.2", "-DCLRT_PRECISION=3",
+                                                                     "-cl-fast-relaxed-math", "-DCLRT_COUNT_RAYS",
+                                                                     "-DCLRT_LANES=16", "-DCLRT_PACKET_ROWS=4",
+                                                                     "-DCLRT_LIB_POW -DCLRT_SHADOW_ALL_SPHERES"});
   }
   SECTION("every precision passes its CLRT_PRECISION code") {
     static_assert(kernel_code(Precision::Naive) == CLRT_PRECISION_NAIVE);
