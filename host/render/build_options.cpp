@@ -2,6 +2,11 @@
 // features.
 #include "render/build_options.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
 #include "render/precision_support.hpp"
 #include "render/scene_buffers.hpp"
 #include "util/error.hpp"
@@ -12,6 +17,32 @@ int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev) {
   if (!cfg.specialize || cfg.precision == Precision::Fp64) return 1;
   if (!is_cpu_type(dev.type)) return 1;
   return dev.native_float_width >= 16 ? 16 : 8;
+}
+
+double median_sphere_pixels(const Scene& scene, int width) {
+  const Camera& camera = scene.camera;
+  const Vec3 forward{camera.rotation[2], camera.rotation[5], camera.rotation[8]};  // R (0, 0, 1)
+  const double forward_length = length(forward);
+  const double pixels_per_unit = camera.projection_plane_d * double(width) / camera.viewport_w;
+  std::vector<double> sizes;
+  sizes.reserve(scene.spheres.size());
+  for (const Sphere& sphere : scene.spheres) {
+    const double depth = dot(sphere.center - camera.position, forward) / forward_length;
+    if (depth > sphere.radius) sizes.push_back(2 * sphere.radius / depth * pixels_per_unit);
+  }
+  if (sizes.empty() || !(forward_length > 0)) return std::numeric_limits<double>::infinity();
+  auto middle = sizes.begin() + std::ptrdiff_t(sizes.size() / 2);
+  std::nth_element(sizes.begin(), middle, sizes.end());
+  return *middle;
+}
+
+int scene_lanes(const KernelConfig& cfg, const DeviceInfo& dev, const Scene& scene, int width, bool bvh) {
+  if (cfg.lanes != 0) return cfg.lanes;
+  const int lanes = default_lanes(cfg, dev);
+  if (lanes > 1 && bvh && scene.spheres.size() >= kRayWalkMinSpheres &&
+      median_sphere_pixels(scene, width) < kPacketMinSpherePixels)
+    return 1;
+  return lanes;
 }
 
 int packet_rows(const KernelConfig& cfg) {

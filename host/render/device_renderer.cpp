@@ -8,6 +8,7 @@
 #include "cl/program.hpp"
 #include "render/scene_buffers.hpp"
 #include "util/error.hpp"
+#include "util/log.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -26,7 +27,7 @@ cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::
 }  // namespace
 
 DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local)
-    : device_(device), config_(std::move(config)), local_(local) {
+    : device_(device), config_(std::move(config)), requested_lanes_(config_.lanes), local_(local) {
   if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);
   context_ = cl::Context(device_.device);
   queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
@@ -34,6 +35,15 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
 }
 
 void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth, const Bvh* bvh) {
+  if (requested_lanes_ == 0) {
+    KernelConfig requested = config_;
+    requested.lanes = 0;
+    config_.lanes = scene_lanes(requested, device_, scene, width, bvh != nullptr);
+    if (config_.verbose && bvh)
+      log_message(LogLevel::Info, "lanes: " + std::to_string(config_.lanes) + " (" +
+                                      std::to_string(scene.spheres.size()) + " spheres, median " +
+                                      std::to_string(median_sphere_pixels(scene, width)) + " px on the image)");
+  }
   std::string opts = build_options(config_, scene, depth, device_.fp64);
   if (opts != options_ || !kernel_()) {
     BuildStats bs;

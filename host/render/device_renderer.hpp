@@ -71,7 +71,8 @@ class DeviceRenderer {
   void check_local_size() const;
 
   DeviceInfo device_;
-  KernelConfig config_;
+  KernelConfig config_;  // lanes resolved: the device's default, or per scene (prepare())
+  int requested_lanes_;  // config.lanes as given (0: chosen per scene, scene_lanes())
   LocalSize local_;
   cl::Context context_;
   cl::CommandQueue queue_;

@@ -2,6 +2,7 @@
 // made from it, the unroll bound and the lane-count rules. Host only: no
 // OpenCL device is needed.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -284,4 +285,46 @@ TEST_CASE("lane counts: explicit, unresolved and per device", "[features][lanes]
     fp64.precision = Precision::Fp64;
     CHECK(default_lanes(fp64, device("CPU", 16)) == 1);
   }
+}
+
+TEST_CASE("median_sphere_pixels: the median sphere's diameter on the image", "[specialize]") {
+  Scene s;  // camera at the origin looking down +z, viewport 1 at d = 1
+  for (double z : {10.0, 20.0, 40.0, -10.0}) {
+    Sphere sphere;
+    sphere.center = {0, 0, z};
+    sphere.radius = 1;
+    s.spheres.push_back(sphere);
+  }
+  // 2r / depth * d * W / viewport: 120, 60 and 30 px at W = 600; the sphere
+  // behind the camera does not count.
+  CHECK(median_sphere_pixels(s, 600) == Approx(60));
+  s.camera.viewport_w = 2;  // twice the view: half the size
+  CHECK(median_sphere_pixels(s, 600) == Approx(30));
+  s.spheres.resize(0);
+  CHECK(std::isinf(median_sphere_pixels(s, 600)));
+}
+
+TEST_CASE("scene_lanes: one ray per work-item for many small spheres through the hierarchy", "[specialize]") {
+  DeviceInfo cpu;
+  cpu.type = "CPU";
+  cpu.native_float_width = 16;
+  KernelConfig cfg;  // specialized robust: 16 lanes on this CPU
+  REQUIRE(default_lanes(cfg, cpu) == 16);
+  Scene s;
+  Sphere small;
+  small.radius = 0.01;
+  small.center = {0, 0, 10};
+  s.spheres.assign(kRayWalkMinSpheres, small);         // 0.002 W px each
+  CHECK(scene_lanes(cfg, cpu, s, 1000, true) == 1);    // 2 px
+  CHECK(scene_lanes(cfg, cpu, s, 1000, false) == 16);  // every sphere tested
+  CHECK(scene_lanes(cfg, cpu, s, 8000, true) == 16);   // 16 px
+  KernelConfig eight = cfg;
+  eight.lanes = 8;  // --lanes wins
+  CHECK(scene_lanes(eight, cpu, s, 1000, true) == 8);
+  s.spheres.pop_back();  // below kRayWalkMinSpheres
+  CHECK(scene_lanes(cfg, cpu, s, 1000, true) == 16);
+  DeviceInfo gpu;
+  gpu.type = "GPU";
+  s.spheres.push_back(small);
+  CHECK(scene_lanes(cfg, gpu, s, 1000, true) == 1);
 }
