@@ -78,7 +78,13 @@ void plot_scaling(const std::vector<ScalingRow>& rows, const std::string& path, 
   if (!embree.x.empty()) series.push_back(embree);
   PlotOptions po;
   po.log_x = po.log_y = true;
-  write_plot(path, title, "random spheres", "ms per frame (median)", series, po);
+  std::string full_title = title;
+  if (!rows.empty()) {
+    const BenchResult& b = rows.front().bench;
+    full_title +=
+        " (" + std::to_string(b.width) + "x" + std::to_string(b.height) + ", depth " + std::to_string(b.depth) + ")";
+  }
+  write_plot(path, full_title, "random spheres", "ms per frame (median)", series, po);
 }
 
 }  // namespace clrt
