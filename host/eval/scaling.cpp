@@ -36,7 +36,7 @@ std::vector<ScalingRow> run_scaling(const std::vector<DeviceInfo>& devices, cons
     Scene scene;
     {
       const std::string text = scene_to_json(generated, JsonStyle::Compact);
-      row.json_bytes = double(text.size());
+      row.json_bytes = text.size();
       t0 = std::chrono::steady_clock::now();
       scene = parse_scene(text, "scaling");
       row.parse_ms = ms_since(t0);

@@ -16,7 +16,7 @@ namespace clrt {
 
 struct ScalingRow {
   size_t spheres = 0;            // random spheres (the book's floor comes on top)
-  double json_bytes = 0;         // the scene as compact JSON
+  size_t json_bytes = 0;         // the scene as compact JSON
   double parse_ms = 0;           // N=1: parse_scene() of that text
   double generate_ms = 0;        // N=1: random_scene()
   BenchResult bench;             // images dropped
