@@ -26,9 +26,10 @@ cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::
 
 }  // namespace
 
-DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local)
+DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local, bool map_results)
     : device_(device), config_(std::move(config)), requested_lanes_(config_.lanes), local_(local) {
   if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);
+  host_unified_ = map_results && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
   context_ = cl::Context(device_.device);
   queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
   source_ = load_kernel_source("trace.cl", config_.kernel_dir);
@@ -96,8 +97,12 @@ void DeviceRenderer::check_local_size() const {
 
 void DeviceRenderer::ensure_tile_buffers(size_t pixels) {
   if (pixels <= tile_capacity_) return;
-  colors_ = cl::Buffer(context_, CL_MEM_WRITE_ONLY, pixels * 3 * sizeof(float));
-  classes_ = cl::Buffer(context_, CL_MEM_WRITE_ONLY, pixels * 2 * sizeof(cl_int));
+  // Where the device works in host memory, the results are allocated there
+  // and mapped after each tile (no copy); elsewhere they are read into
+  // staging vectors kept from tile to tile (no new pages per tile).
+  const cl_mem_flags flags = CL_MEM_WRITE_ONLY | (host_unified_ ? CL_MEM_ALLOC_HOST_PTR : 0);
+  colors_ = cl::Buffer(context_, flags, pixels * 3 * sizeof(float));
+  classes_ = cl::Buffer(context_, flags, pixels * 2 * sizeof(cl_int));
   ray_counters_ = cl::Buffer(context_, CL_MEM_WRITE_ONLY, (config_.count_rays ? pixels : 1) * sizeof(clrt_ray_counts));
   tile_capacity_ = pixels;
 }
@@ -136,10 +141,20 @@ LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst)
   const LaunchTime time = run_timed(queue_, kernel_, global, local);
 
   auto t0 = std::chrono::steady_clock::now();
-  std::vector<float> rgb(n * 3);
-  std::vector<cl_int> aux(n * 2);
-  queue_.enqueueReadBuffer(colors_, CL_TRUE, 0, rgb.size() * sizeof(float), rgb.data());
-  queue_.enqueueReadBuffer(classes_, CL_TRUE, 0, aux.size() * sizeof(cl_int), aux.data());
+  const float* rgb = nullptr;
+  const cl_int* aux = nullptr;
+  if (host_unified_) {
+    rgb = static_cast<const float*>(queue_.enqueueMapBuffer(colors_, CL_TRUE, CL_MAP_READ, 0, n * 3 * sizeof(float)));
+    aux =
+        static_cast<const cl_int*>(queue_.enqueueMapBuffer(classes_, CL_TRUE, CL_MAP_READ, 0, n * 2 * sizeof(cl_int)));
+  } else {
+    if (staging_rgb_.size() < n * 3) staging_rgb_.resize(n * 3);
+    if (staging_aux_.size() < n * 2) staging_aux_.resize(n * 2);
+    queue_.enqueueReadBuffer(colors_, CL_TRUE, 0, n * 3 * sizeof(float), staging_rgb_.data());
+    queue_.enqueueReadBuffer(classes_, CL_TRUE, 0, n * 2 * sizeof(cl_int), staging_aux_.data());
+    rgb = staging_rgb_.data();
+    aux = staging_aux_.data();
+  }
   if (config_.count_rays) {
     std::vector<clrt_ray_counts> rc(n);
     queue_.enqueueReadBuffer(ray_counters_, CL_TRUE, 0, rc.size() * sizeof(clrt_ray_counts), rc.data());
@@ -154,6 +169,11 @@ LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst)
       dst.hit[d] = aux[s * 2];
       dst.shadowed[d] = aux[s * 2 + 1];
     }
+  }
+  if (host_unified_) {
+    queue_.enqueueUnmapMemObject(colors_, const_cast<float*>(rgb));
+    queue_.enqueueUnmapMemObject(classes_, const_cast<cl_int*>(aux));
+    queue_.finish();  // (the next tile's kernel writes them again)
   }
   timings_.download_ms += ms_since(t0);
   return time;

@@ -42,7 +42,9 @@ struct DeviceTimings {
 
 class DeviceRenderer {
  public:
-  DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local = {});
+  // map_results: map the result buffers where the device has host unified
+  // memory (else they are read into staging vectors).
+  DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local = {}, bool map_results = true);
 
   // Builds the (scene-specialized) program and uploads the scene, and its
   // hierarchy when the configuration uses one (`bvh`: build_bvh(scene), made
@@ -81,6 +83,9 @@ class DeviceRenderer {
   std::string options_, source_;
   cl::Buffer params_, spheres_, lights_, colors_, classes_, ray_counters_, nodes_, primitives_;
   size_t tile_capacity_ = 0;
+  bool host_unified_ = false;       // CL_DEVICE_HOST_UNIFIED_MEMORY: results mapped, not read
+  std::vector<float> staging_rgb_;  // otherwise read here (kept from tile to tile)
+  std::vector<cl_int> staging_aux_;
   int width_ = 0, height_ = 0;
   int default_local_x_ = 1;    // set when the kernel is built
   size_t max_work_group_ = 1;  // CL_KERNEL_WORK_GROUP_SIZE of the built kernel

@@ -15,7 +15,7 @@ namespace clrt {
 Renderer::Renderer(const std::vector<DeviceInfo>& devices, const RenderSettings& settings) : settings_(settings) {
   if (devices.empty()) throw std::logic_error("Renderer without devices");
   for (const auto& d : devices)
-    devices_.push_back(std::make_unique<DeviceRenderer>(d, settings.kernel, settings.local));
+    devices_.push_back(std::make_unique<DeviceRenderer>(d, settings.kernel, settings.local, settings.map_results));
 }
 
 std::string Renderer::device_names() const {
@@ -72,6 +72,12 @@ void Renderer::prepare(const Scene& scene, int width, int height, int depth) {
 }
 
 Image Renderer::render() {
+  Image img;
+  render_into(img);
+  return img;
+}
+
+void Renderer::render_into(Image& img) {
   const auto t0 = Clock::now();
   std::vector<DeviceRenderer*> workers;
   for (auto& d : devices_) {
@@ -79,8 +85,12 @@ Image Renderer::render() {
     d->begin_frame();
     workers.push_back(d.get());
   }
-  // Every device was prepared with the same scene and size.
-  Image img(devices_.front()->width(), devices_.front()->height());
+  // Every device was prepared with the same scene and size; the bands cover
+  // every pixel, so a reused image needs no clearing.
+  const int width = devices_.front()->width(), height = devices_.front()->height();
+  if (img.width != width || img.height != height || img.rgb.size() != size_t(width) * height * 3 ||
+      img.hit.size() != size_t(width) * height || img.shadowed.size() != size_t(width) * height)
+    img = Image(width, height);
   stats_.shares = render_bands(workers, img, settings_.tiles);
   stats_.wall_ms = ms_since(t0);
   stats_.kernel_ms = stats_.download_ms = 0;
@@ -94,7 +104,6 @@ Image Renderer::render() {
     stats_.download_ms += devices_[i]->timings().download_ms;
     stats_.rays += devices_[i]->ray_counts();
   }
-  return img;
 }
 
 }  // namespace clrt

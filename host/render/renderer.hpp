@@ -22,6 +22,9 @@ struct RenderSettings {
   KernelConfig kernel;
   TilePolicy tiles;
   LocalSize local;
+  // Map the results where the device works in host memory instead of reading
+  // them into a copy (false: always read; tests compare both paths).
+  bool map_results = true;
 };
 
 // The last prepare() and render(), over every device.
@@ -51,6 +54,9 @@ class Renderer {
   void prepare(const Scene& scene, int width, int height, int depth);
   // Renders the prepared scene: the whole frame, shared by every device.
   Image render();
+  // The same into `out`, whose memory is reused when it has the frame's size
+  // (frame after frame: no new pages for the image).
+  void render_into(Image& out);
 
   const FrameStats& stats() const { return stats_; }
   // "name" or "name + name + ...".

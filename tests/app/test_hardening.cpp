@@ -431,6 +431,26 @@ TEST_CASE("a signal removes the scratch files and exits 128 + signal", "[hardeni
   CHECK_FALSE(fs::exists(fs::path(path).parent_path()));
 }
 
+// Waits (up to 60 s) until process `pid` runs the clrt binary and catches
+// `sig` (/proc/PID/status: Name, SigCgt): a signal sent before it has its
+// handler would end it the default way. Loading its libraries can take over
+// a second on a loaded machine, so a fixed sleep is not enough.
+static bool wait_for_handler(pid_t pid, int sig) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    std::string line, name;
+    unsigned long long caught = 0;
+    while (std::getline(status, line)) {
+      if (line.rfind("Name:", 0) == 0) name = line.substr(line.find_first_not_of(" \t", 5));
+      if (line.rfind("SigCgt:", 0) == 0) caught = std::stoull(line.substr(7), nullptr, 16);
+    }
+    if (name == "clrt" && (caught >> (sig - 1) & 1)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
 TEST_CASE("SIGINT during a render: exit 130, one line, nothing written", "[cli][hardening][opencl]") {
   TempDir dir;
   const std::string out = dir / "out.png";
@@ -443,10 +463,13 @@ TEST_CASE("SIGINT during a render: exit 130, one line, nothing written", "[cli][
     ::execl("/bin/sh", "sh", "-c", ("exec " + cmd).c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  const bool ready = wait_for_handler(child, SIGINT);
+  // then into the render (the reference at 4096x4096 takes seconds)
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   ::kill(child, SIGINT);
   int status = 0;
   ::waitpid(child, &status, 0);
+  REQUIRE(ready);
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 130);
   CHECK(clrt_test::slurp(dir / "err.txt") == "clrt: error: interrupted by SIGINT\n");

@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <catch2/catch.hpp>
+#include <tuple>
 
 #include "cli_run.hpp"
 #include "image/image_file.hpp"
@@ -88,4 +89,29 @@ TEST_CASE("a launch-time limit splits one device's frame into bands", "[opencl]"
   CHECK(limited.stats().launches == 1 + (120 - 16));
   CHECK(got.rgb == want.rgb);
   CHECK(got.hit == want.hit);
+}
+
+TEST_CASE("mapped and read results, fresh and reused images: the same bytes", "[opencl][multidevice]") {
+  DeviceInfo dev = clrt_test::test_device();
+  const Scene camera = clrt_test::load("scenes/cgfs-camera.json");
+  const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
+  // Bands of 7 rows: tiles of several sizes go through the buffers.
+  RenderSettings mapped{KernelConfig{}, TilePolicy{0, 7}, {}};
+  RenderSettings read = mapped;
+  read.map_results = false;
+  Renderer a({dev}, mapped), b({dev}, read);
+  Image reused;
+  for (const auto& [scene, width, height] : {std::tuple{&camera, 120, 90}, std::tuple{&demo, 64, 40},
+                                             std::tuple{&demo, 64, 40}, std::tuple{&camera, 33, 61}}) {
+    INFO(width << "x" << height);
+    a.prepare(*scene, width, height, 3);
+    b.prepare(*scene, width, height, 3);
+    const Image want = b.render();
+    a.render_into(reused);  // reuses, resizes, reuses, resizes
+    CHECK(reused.width == width);
+    CHECK(reused.height == height);
+    CHECK(reused.rgb == want.rgb);
+    CHECK(reused.hit == want.hit);
+    CHECK(reused.shadowed == want.shadowed);
+  }
 }
