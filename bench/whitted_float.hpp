@@ -1,0 +1,166 @@
+// whitted_float.hpp - the float Whitted tracer that both bench comparisons
+// share (omp_tracer.cpp, embree_tracer.cpp): the book's TraceRay and
+// ComputeLighting in float, its sphere quadratic, and the loop over pixels
+// (rows shared among OpenMP threads, FTZ/DAZ). Each tracer supplies only
+// the two queries that walk the spheres, found by argument-dependent lookup
+// on its scene type W (which holds a Scenery's fields):
+//   int closest(const W&, V O, V D, float tmin, float tmax, float& t);
+//   bool blocked(const W&, V O, V D, float tmin, float tmax);
+// One copy of the shading means the two images can differ only by those
+// queries (tests/eval/test_embree_tracer.cpp: they do not).
+//
+// Same floating-point environment as the kernel, which is built with
+// -cl-denorms-are-zero and has no errno: each thread runs with FTZ/DAZ set
+// (x86 MXCSR), and the tracers are built with -fno-math-errno
+// (CMakeLists.txt). Without them the book's specular term pow(r.v, 500)
+// underflows on most pixels and glibc's powf takes its underflow path
+// through denormal arithmetic: measured 11-14% of the OpenMP tracer's frame
+// time (docs/performance.md), which had inflated clrt's speedup over it.
+#pragma once
+#include <omp.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "scene/scene.hpp"
+#include "util/vec3.hpp"
+
+namespace clrt_bench {
+
+// The float vector of the comparisons; its operators are vec3.hpp's.
+using V = clrt::Vector3<float>;
+using clrt::dot;
+using clrt::length;
+
+inline V fv(const clrt::Vec3& v) {
+  return {float(v.x), float(v.y), float(v.z)};
+}
+
+struct Sph {
+  V center;
+  float radius, specular, reflective;
+  V color;
+};
+struct Lig {
+  clrt::LightType type;
+  float intensity;
+  V vec;
+};
+// A scene in the tracers' floats.
+struct Scenery {
+  std::vector<Sph> spheres;
+  std::vector<Lig> lights;
+  V background;
+};
+
+inline Scenery scenery(const clrt::Scene& scene) {
+  Scenery w;
+  for (const auto& s : scene.spheres)
+    w.spheres.push_back({fv(s.center), float(s.radius), float(s.specular), float(s.reflective), fv(s.color)});
+  for (const auto& l : scene.lights) w.lights.push_back({l.type, float(l.intensity), fv(l.vec)});
+  w.background = fv(scene.background);
+  return w;
+}
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// The book's IntersectRaySphere: both roots, or (inf, inf).
+inline void intersect(V O, V D, const Sph& s, float& t1, float& t2) {
+  V CO = O - s.center;
+  float a = dot(D, D), b = 2 * dot(CO, D), c = dot(CO, CO) - s.radius * s.radius;
+  float disc = b * b - 4 * a * c;
+  if (disc < 0) {
+    t1 = t2 = kInf;
+    return;
+  }
+  float sq = std::sqrt(disc);
+  t1 = (-b + sq) / (2 * a);
+  t2 = (-b - sq) / (2 * a);
+}
+
+template <class W>
+float lighting(const W& w, V P, V N, V Vv, float spec, float eps) {
+  float i = 0;
+  float ln = length(N), lv = length(Vv);
+  for (const Lig& l : w.lights) {
+    if (l.type == clrt::LightType::Ambient) {
+      i += l.intensity;
+      continue;
+    }
+    V L = l.type == clrt::LightType::Point ? l.vec - P : l.vec;
+    float tmax = l.type == clrt::LightType::Point ? 1.f : kInf;
+    if (blocked(w, P, L, eps, tmax)) continue;
+    float nl = dot(N, L);
+    if (nl > 0) i += l.intensity * nl / (ln * length(L));
+    if (spec != -1) {
+      V R = (2 * dot(N, L)) * N - L;
+      float rv = dot(R, Vv);
+      if (rv > 0) i += l.intensity * std::pow(rv / (length(R) * lv), spec);
+    }
+  }
+  return i;
+}
+
+template <class W>
+V trace(const W& w, V O, V D, float tmin, float tmax, int depth, float eps) {
+  float t;
+  int si = closest(w, O, D, tmin, tmax, t);
+  if (si < 0) return w.background;
+  const Sph& s = w.spheres[si];
+  V P = O + t * D;
+  V N = P - s.center;
+  N = (1 / length(N)) * N;
+  V Vv = {-D.x, -D.y, -D.z};
+  V local = lighting(w, P, N, Vv, s.specular, eps) * s.color;
+  if (depth <= 0 || s.reflective <= 0) return local;
+  V R = (2 * dot(N, Vv)) * N - Vv;
+  V refl = trace(w, P, R, eps, kInf, depth - 1, eps);
+  return (1 - s.reflective) * local + s.reflective * refl;
+}
+
+// The image: one pixel per loop iteration, rows shared among OpenMP
+// threads. Returns the number of threads.
+template <class W>
+int render_pixels(const W& w, const clrt::Scene& scene, int width, int height, int depth, std::vector<float>& rgb) {
+  const V O = fv(scene.camera.position);
+  const auto& m = scene.camera.rotation;
+  const float vw = float(scene.camera.viewport_w), vh = float(scene.camera.viewport_h);
+  const float d = float(scene.camera.projection_plane_d), eps = float(scene.epsilon);
+  rgb.assign(size_t(width) * height * 3, 0.f);
+  int threads = 1;
+#pragma omp parallel
+  {
+#if defined(__SSE__)
+    const unsigned saved_csr = _mm_getcsr();
+    _mm_setcsr(saved_csr | 0x8040);  // FTZ (bit 15) | DAZ (bit 6)
+#endif
+#pragma omp single
+    threads = omp_get_num_threads();
+#pragma omp for schedule(dynamic, 4)
+    for (int row = 0; row < height; ++row) {
+      const int y = height / 2 - 1 - row;
+      for (int col = 0; col < width; ++col) {
+        const int x = col - width / 2;
+        V c = {x * vw / width, y * vh / height, d};
+        V D = {float(m[0]) * c.x + float(m[1]) * c.y + float(m[2]) * c.z,
+               float(m[3]) * c.x + float(m[4]) * c.y + float(m[5]) * c.z,
+               float(m[6]) * c.x + float(m[7]) * c.y + float(m[8]) * c.z};
+        V col_v = trace(w, O, D, 1.f, kInf, depth, eps);
+        float* p = &rgb[(size_t(row) * width + col) * 3];
+        p[0] = col_v.x;
+        p[1] = col_v.y;
+        p[2] = col_v.z;
+      }
+    }
+#if defined(__SSE__)
+    _mm_setcsr(saved_csr);
+#endif
+  }
+  return threads;
+}
+
+}  // namespace clrt_bench
