@@ -2,6 +2,8 @@
 // against the number of spheres, clrt beside the Embree tracer.
 #include <unistd.h>
 
+#include <cctype>
+#include <charconv>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -26,15 +28,14 @@ std::vector<size_t> parse_counts(const std::string& text) {
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    size_t used = 0;
+    // Leading white space is skipped; from_chars takes no sign, trailing
+    // text or exponent ("-5", "+5", "5 ", "1e3" fail).
+    const char* begin = item.data();
+    const char* end = begin + item.size();
+    while (begin != end && std::isspace(static_cast<unsigned char>(*begin))) ++begin;
     unsigned long long n = 0;
-    try {
-      if (item.empty() || item[0] == '-' || item[0] == '+') throw std::invalid_argument(item);
-      n = std::stoull(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || n < 1 || n > kMaxGeneratedSpheres)
+    const auto [stop, error] = std::from_chars(begin, end, n);
+    if (error != std::errc() || stop != end || n < 1 || n > kMaxGeneratedSpheres)
       throw UserError("--spheres: expected counts from 1 to " + std::to_string(kMaxGeneratedSpheres) +
                       " separated by commas (got \"" + text.substr(0, 64) + "\")");
     counts.push_back(size_t(n));
