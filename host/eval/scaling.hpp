@@ -18,7 +18,6 @@ struct ScalingRow {
   size_t spheres = 0;            // random spheres (the book's floor comes on top)
   size_t json_bytes = 0;         // the scene as compact JSON
   double parse_ms = 0;           // N=1: parse_scene() of that text
-  double generate_ms = 0;        // N=1: random_scene()
   BenchResult bench;             // images dropped
   double ns_per_ray = 0;         // median clrt frame / rays traced (wall time, all devices)
   double embree_ns_per_ray = 0;  // median Embree frame / the same ray count (0 without Embree)
