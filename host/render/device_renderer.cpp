@@ -29,7 +29,7 @@ cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::
 DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local, bool map_results)
     : device_(device), config_(std::move(config)), requested_lanes_(config_.lanes), local_(local) {
   if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);
-  host_unified_ = map_results && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
+  map_results_ = map_results && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
   context_ = cl::Context(device_.device);
   queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
   source_ = load_kernel_source("trace.cl", config_.kernel_dir);
@@ -100,7 +100,7 @@ void DeviceRenderer::ensure_tile_buffers(size_t pixels) {
   // Where the device works in host memory, the results are allocated there
   // and mapped after each tile (no copy); elsewhere they are read into
   // staging vectors kept from tile to tile (no new pages per tile).
-  const cl_mem_flags flags = CL_MEM_WRITE_ONLY | (host_unified_ ? CL_MEM_ALLOC_HOST_PTR : 0);
+  const cl_mem_flags flags = CL_MEM_WRITE_ONLY | (map_results_ ? CL_MEM_ALLOC_HOST_PTR : 0);
   colors_ = cl::Buffer(context_, flags, pixels * 3 * sizeof(float));
   classes_ = cl::Buffer(context_, flags, pixels * 2 * sizeof(cl_int));
   ray_counters_ = cl::Buffer(context_, CL_MEM_WRITE_ONLY, (config_.count_rays ? pixels : 1) * sizeof(clrt_ray_counts));
@@ -143,7 +143,7 @@ LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst)
   auto t0 = std::chrono::steady_clock::now();
   const float* rgb = nullptr;
   const cl_int* aux = nullptr;
-  if (host_unified_) {
+  if (map_results_) {
     rgb = static_cast<const float*>(queue_.enqueueMapBuffer(colors_, CL_TRUE, CL_MAP_READ, 0, n * 3 * sizeof(float)));
     aux =
         static_cast<const cl_int*>(queue_.enqueueMapBuffer(classes_, CL_TRUE, CL_MAP_READ, 0, n * 2 * sizeof(cl_int)));
@@ -170,7 +170,7 @@ LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst)
       dst.shadowed[d] = aux[s * 2 + 1];
     }
   }
-  if (host_unified_) {
+  if (map_results_) {
     queue_.enqueueUnmapMemObject(colors_, const_cast<float*>(rgb));
     queue_.enqueueUnmapMemObject(classes_, const_cast<cl_int*>(aux));
     queue_.finish();  // (the next tile's kernel writes them again)

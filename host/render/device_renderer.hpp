@@ -83,7 +83,7 @@ class DeviceRenderer {
   std::string options_, source_;
   cl::Buffer params_, spheres_, lights_, colors_, classes_, ray_counters_, nodes_, primitives_;
   size_t tile_capacity_ = 0;
-  bool host_unified_ = false;       // CL_DEVICE_HOST_UNIFIED_MEMORY: results mapped, not read
+  bool map_results_ = false;        // asked for and CL_DEVICE_HOST_UNIFIED_MEMORY: mapped, not read
   std::vector<float> staging_rgb_;  // otherwise read here (kept from tile to tile)
   std::vector<cl_int> staging_aux_;
   int width_ = 0, height_ = 0;
