@@ -71,7 +71,7 @@ CLRT_INLINE int descend(__global const clrt_bvh_node* node, const vec3* D, int* 
 CLRT_INLINE int entry_roots(int entry, const vec3* O, const vec3* D, lint self, __global const clrt_sphere* spheres,
                             lreal* t1, lreal* t2, lint* tests) {
   const int i = entry & CLRT_PRIMITIVE_INDEX_MASK;
-  intersect(O, D, &spheres[i], self == i, t1, t2);
+  intersect(O, D, spheres, i, self == i, t1, t2);
   *tests += (lint)1;
   return i;
 }

@@ -5,35 +5,37 @@
 
 #include "clrt_math.h"
 
-/* Both roots of |O + tD - C|^2 = r^2, or (inf, inf). `self` is set in the
- * lanes whose O lies on this sphere (the hit a secondary ray starts from). */
-CLRT_INLINE void intersect(const vec3* Op, const vec3* Dp, __global const clrt_sphere* s, lint self, lreal* t1,
-                           lreal* t2) {
-  const vec3 O = *Op, D = *Dp;
-  const real Cx = REAL_FROM_HI_LO(s->center[0], s->center_lo[0]), Cy = REAL_FROM_HI_LO(s->center[1], s->center_lo[1]),
-             Cz = REAL_FROM_HI_LO(s->center[2], s->center_lo[2]);
-  const real r = REAL_FROM_HI_LO(s->radius, s->radius_lo);
-#if CLRT_PRECISION == CLRT_PRECISION_NAIVE || CLRT_PRECISION == CLRT_PRECISION_FP64
-  /* The book, literally. */
-  vec3 CO = v3(O.x - Cx, O.y - Cy, O.z - Cz);
+#if CLRT_PRECISION != CLRT_PRECISION_NAIVE && CLRT_PRECISION != CLRT_PRECISION_FP64
+/* Ray Tracing Gems ch. 7: the roots of |f + tD|^2 = r^2 (f = O - C) given
+ * c = |f|^2 - r^2, the discriminant from the perpendicular distance
+ * l = f + (b/a) D and the numerically stable pair of roots q/a, c/q. */
+CLRT_INLINE void stable_roots(const vec3* fp, lreal c, const vec3* Dp, real r, lreal* b_out, lreal* t1, lreal* t2) {
+  const vec3 f = *fp, D = *Dp;
   lreal a = vdot(D, D);
-  lreal b = 2 * vdot(CO, D);
-  lreal c = vdot(CO, CO) - r * r;
-  lreal disc = b * b - 4 * a * c;
-  lreal sq = sqrt(disc);
-  /* disc < 0: no hit (a select per lane, not a branch) */
-  *t1 = disc < 0 ? (lreal)REAL_INFINITY : (-b + sq) / (2 * a);
-  *t2 = disc < 0 ? (lreal)REAL_INFINITY : (-b - sq) / (2 * a);
-#else
-  /* Ray Tracing Gems ch. 7: discriminant from the perpendicular distance and
-   * the numerically stable pair of roots q/a, c/q. */
+  lreal b = -vdot(f, D);
+  vec3 l = vadd(f, vscale(REAL_DIVIDE(b, a), D));
+  lreal disc = a * (r * r - vdot(l, l));
+  lreal q = b + copysign(REAL_SQRT(disc), b);
+  *t1 = disc < 0 ? (lreal)REAL_INFINITY : REAL_DIVIDE(c, q);
+  *t2 = disc < 0 ? (lreal)REAL_INFINITY : REAL_DIVIDE(q, a);
+  *b_out = b;
+}
+#endif
+
 #if CLRT_PRECISION == CLRT_PRECISION_ROBUST
-  /* f = O - C and c = |f|^2 - r^2 in float-float: c is the product of two
-   * nearly equal large numbers' difference, the source of self-hits. */
+/* The roots with f = O - C and c = |f|^2 - r^2 in float-float, for the
+ * spheres the host flags (host/render/conditioning.hpp): their radius or
+ * distance is large against epsilon, and c, the difference of two nearly
+ * equal large numbers, would be off by more than epsilon allows for rays that
+ * start near the surface. */
+CLRT_INLINE void compensated_roots(const vec3* Op, const vec3* Dp, __global const clrt_sphere* s, lreal* b, lreal* t1,
+                                   lreal* t2) {
+  const vec3 O = *Op;
+  const real r = s->radius;
   lreal fxh, fxl, fyh, fyl, fzh, fzl;
-  two_sum(O.x, -Cx, &fxh, &fxl);
-  two_sum(O.y, -Cy, &fyh, &fyl);
-  two_sum(O.z, -Cz, &fzh, &fzl);
+  two_sum(O.x, -s->center[0], &fxh, &fxl);
+  two_sum(O.y, -s->center[1], &fyh, &fyl);
+  two_sum(O.z, -s->center[2], &fzh, &fzl);
   vec3 fh = v3(fxh, fyh, fzh);
   vec3 fl = v3(fxl - s->center_lo[0], fyl - s->center_lo[1], fzl - s->center_lo[2]);
   lreal f2h, f2l;
@@ -44,18 +46,87 @@ CLRT_INLINE void intersect(const vec3* Op, const vec3* Dp, __global const clrt_s
   two_sum(f2h, -rr, &cdh, &cdl);
   lreal c = cdh + (cdl + (f2l - rr_e));
   vec3 f = vadd(fh, fl);
-#else
-  vec3 f = v3(O.x - Cx, O.y - Cy, O.z - Cz);
-  lreal c = vdot(f, f) - r * r;
-#endif
+  stable_roots(&f, c, Dp, r, b, t1, t2);
+}
+
+/* The roots in plain float, for the spheres the host leaves unflagged:
+ * g = C - O, b = g.D and the discriminant b^2 - a c in Lagrange's form
+ * a r^2 - |g x D|^2, roots (b -+ sqrt) / a. It needs no c, no division but
+ * the roots' and is as fast as the book's formula (measured,
+ * docs/performance.md); its rounding, u |g| in the ray's distance from the
+ * centre, is that of the Ray Tracing Gems form, where the book's b^2 - 4ac
+ * loses u |g|^2 / r (with it, unit spheres reflected in a sphere of radius
+ * 2000 around the camera came out wrong on 18% of the pixels). A ray that
+ * starts near the surface gets its near root to ~u r / |D|, far below
+ * epsilon for the spheres the host leaves to this path
+ * (host/render/conditioning.hpp). */
+CLRT_INLINE void cheap_roots(const vec3* Op, const vec3* Dp, __global const clrt_sphere* s, lreal* b_out, lreal* t1,
+                             lreal* t2) {
+  const vec3 O = *Op, D = *Dp;
+  const real r = s->radius;
+  vec3 g = v3(s->center[0] - O.x, s->center[1] - O.y, s->center[2] - O.z);
   lreal a = vdot(D, D);
-  lreal b = -vdot(f, D);
-  vec3 l = vadd(f, vscale(REAL_DIVIDE(b, a), D));
-  lreal disc = a * (r * r - vdot(l, l));
-  lreal q = b + copysign(REAL_SQRT(disc), b);
-  lreal u1 = disc < 0 ? (lreal)REAL_INFINITY : REAL_DIVIDE(c, q);
-  lreal u2 = disc < 0 ? (lreal)REAL_INFINITY : REAL_DIVIDE(q, a);
+  lreal b = vdot(g, D);
+  vec3 x = v3(g.y * D.z - g.z * D.y, g.z * D.x - g.x * D.z, g.x * D.y - g.y * D.x);
+  lreal disc = a * (r * r) - vdot(x, x);
+  lreal sq = REAL_SQRT(disc);
+  *t1 = disc < 0 ? (lreal)REAL_INFINITY : REAL_DIVIDE(b - sq, a);
+  *t2 = disc < 0 ? (lreal)REAL_INFINITY : REAL_DIVIDE(b + sq, a);
+  *b_out = b;
+}
+
+/* Whether sphere `index` (at s) takes the compensated path: a constant in
+ * specialized builds, one for all spheres (CLRT_COMPENSATED_SPHERES) or one
+ * per sphere with the unrolled counts (CLRT_COMPENSATED_FLAGS), else its
+ * flag, read at run time. */
+#if defined(CLRT_COMPENSATED_SPHERES)
+#define SPHERE_COMPENSATED(index, s) CLRT_COMPENSATED_SPHERES
+#elif defined(CLRT_SPECIALIZED) && defined(CLRT_COMPENSATED_FLAGS) && CLRT_N_SPHERES > 0
+__constant int clrt_compensated_flags[CLRT_N_SPHERES] = {CLRT_COMPENSATED_FLAGS};
+#define SPHERE_COMPENSATED(index, s) (clrt_compensated_flags[index])
+#else
+#define SPHERE_COMPENSATED(index, s) ((s)->compensated)
+#endif
+#endif
+
+/* Both roots of |O + tD - C|^2 = r^2 for sphere `index`, or (inf, inf).
+ * `self` is set in the lanes whose O lies on this sphere (the hit a
+ * secondary ray starts from). */
+CLRT_INLINE void intersect(const vec3* Op, const vec3* Dp, __global const clrt_sphere* spheres, int index, lint self,
+                           lreal* t1, lreal* t2) {
+  __global const clrt_sphere* s = &spheres[index];
+#if CLRT_PRECISION == CLRT_PRECISION_NAIVE || CLRT_PRECISION == CLRT_PRECISION_FP64
+  /* The book, literally. */
+  const vec3 O = *Op, D = *Dp;
+  const real Cx = REAL_FROM_HI_LO(s->center[0], s->center_lo[0]), Cy = REAL_FROM_HI_LO(s->center[1], s->center_lo[1]),
+             Cz = REAL_FROM_HI_LO(s->center[2], s->center_lo[2]);
+  const real r = REAL_FROM_HI_LO(s->radius, s->radius_lo);
+  vec3 CO = v3(O.x - Cx, O.y - Cy, O.z - Cz);
+  lreal a = vdot(D, D);
+  lreal b = 2 * vdot(CO, D);
+  lreal c = vdot(CO, CO) - r * r;
+  lreal disc = b * b - 4 * a * c;
+  lreal sq = sqrt(disc);
+  /* disc < 0: no hit (a select per lane, not a branch) */
+  *t1 = disc < 0 ? (lreal)REAL_INFINITY : (-b + sq) / (2 * a);
+  *t2 = disc < 0 ? (lreal)REAL_INFINITY : (-b - sq) / (2 * a);
+#else
+  lreal b, u1, u2;
+#if CLRT_PRECISION == CLRT_PRECISION_ROBUST
+  /* uniform across the lanes: every lane tests the same sphere */
+  if (SPHERE_COMPENSATED(index, s))
+    compensated_roots(Op, Dp, s, &b, &u1, &u2);
+  else
+    cheap_roots(Op, Dp, s, &b, &u1, &u2);
+#else
+  const vec3 O = *Op;
+  vec3 f = v3(O.x - s->center[0], O.y - s->center[1], O.z - s->center[2]);
+  lreal c = vdot(f, f) - s->radius * s->radius;
+  stable_roots(&f, c, Dp, s->radius, &b, &u1, &u2);
+#endif
 #if CLRT_SELF_ROOTS
+  const vec3 D = *Dp;
+  lreal a = vdot(D, D);
   u1 = self ? (lreal)0 : u1;
   u2 = self ? REAL_DIVIDE(2 * b, a) : u2;
 #endif
@@ -74,14 +145,14 @@ CLRT_INLINE void intersect(const vec3* Op, const vec3* Dp, __global const clrt_s
 /* Closest hit in (tmin, tmax) per lane; the sphere index or -1. */
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
                                       __global const clrt_params* params, __global const clrt_sphere* spheres,
-                                      __global const clrt_bvh_node* nodes, __global const int* primitives,
-                                      lreal* t_out, lint* tests) {
+                                      __global const clrt_bvh_node* nodes, __global const int* primitives, lreal* t_out,
+                                      lint* tests) {
   *tests += (lint)CLRT_SPHERE_COUNT(params);
   lreal closest = REAL_INFINITY;
   lint best = -1;
   CLRT_UNROLL for (int i = 0; i < CLRT_SPHERE_COUNT(params); ++i) {
     lreal t1, t2;
-    intersect(O, D, &spheres[i], self == i, &t1, &t2);
+    intersect(O, D, spheres, i, self == i, &t1, &t2);
     lint nearer = (t1 < closest) & (tmin < t1) & (t1 < tmax);
     closest = nearer ? t1 : closest;
     best = nearer ? (lint)i : best;
@@ -107,7 +178,7 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
     if (ALL(blocked | !active)) break;
 #endif
     lreal t1, t2;
-    intersect(O, D, &spheres[i], self == i, &t1, &t2);
+    intersect(O, D, spheres, i, self == i, &t1, &t2);
     blocked |= ((tmin < t1) & (t1 < tmax)) | ((tmin < t2) & (t2 < tmax));
   }
   return blocked;

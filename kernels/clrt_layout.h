@@ -46,7 +46,10 @@ typedef struct clrt_sphere {
   clrt_f32 color[3]; /* 0..255 */
   clrt_f32 specular; /* -1 = matte */
   clrt_f32 reflective;
-  clrt_f32 pad[3];
+  /* robust kernel: 1 = compensated arithmetic for this sphere, 0 = the
+   * cheap path (the host's rule: host/render/conditioning.hpp) */
+  clrt_i32 compensated;
+  clrt_f32 pad[2];
 } clrt_sphere; /* 64 bytes */
 
 typedef struct clrt_light {
@@ -54,7 +57,7 @@ typedef struct clrt_light {
   clrt_f32 intensity;
   clrt_f32 vec[3];    /* position (point) or direction (directional), hi */
   clrt_f32 vec_lo[3]; /* lo parts */
-} clrt_light; /* 32 bytes */
+} clrt_light;         /* 32 bytes */
 
 typedef struct clrt_params {
   clrt_i32 width; /* full image size in pixels */
@@ -112,41 +115,42 @@ typedef struct clrt_bvh_node {
  * FIELD(struct, member): the one list that the host's static_asserts, the
  * kernel's layout probe and the layout test walk. A member added above but
  * not here leaves a gap that the host's static_asserts report. */
-#define CLRT_LAYOUT_FIELDS(FIELD)    \
-  FIELD(clrt_sphere, center)         \
-  FIELD(clrt_sphere, radius)         \
-  FIELD(clrt_sphere, center_lo)      \
-  FIELD(clrt_sphere, radius_lo)      \
-  FIELD(clrt_sphere, color)          \
-  FIELD(clrt_sphere, specular)       \
-  FIELD(clrt_sphere, reflective)     \
-  FIELD(clrt_sphere, pad)            \
-  FIELD(clrt_light, type)            \
-  FIELD(clrt_light, intensity)       \
-  FIELD(clrt_light, vec)             \
-  FIELD(clrt_light, vec_lo)          \
-  FIELD(clrt_params, width)          \
-  FIELD(clrt_params, height)         \
-  FIELD(clrt_params, depth)          \
-  FIELD(clrt_params, n_spheres)      \
-  FIELD(clrt_params, n_lights)       \
-  FIELD(clrt_params, pad0)           \
-  FIELD(clrt_params, viewport)       \
-  FIELD(clrt_params, proj_d)         \
-  FIELD(clrt_params, epsilon)        \
-  FIELD(clrt_params, origin)         \
-  FIELD(clrt_params, origin_lo)      \
-  FIELD(clrt_params, rotation)       \
-  FIELD(clrt_params, rotation_lo)    \
-  FIELD(clrt_params, background)     \
-  FIELD(clrt_params, proj_d_lo)      \
-  FIELD(clrt_params, viewport_lo)    \
-  FIELD(clrt_params, epsilon_lo)     \
-  FIELD(clrt_params, pad1)           \
-  FIELD(clrt_ray_counts, primary)    \
-  FIELD(clrt_ray_counts, shadow)     \
-  FIELD(clrt_ray_counts, reflection) \
-  FIELD(clrt_ray_counts, sphere_tests)  \
+#define CLRT_LAYOUT_FIELDS(FIELD)      \
+  FIELD(clrt_sphere, center)           \
+  FIELD(clrt_sphere, radius)           \
+  FIELD(clrt_sphere, center_lo)        \
+  FIELD(clrt_sphere, radius_lo)        \
+  FIELD(clrt_sphere, color)            \
+  FIELD(clrt_sphere, specular)         \
+  FIELD(clrt_sphere, reflective)       \
+  FIELD(clrt_sphere, compensated)      \
+  FIELD(clrt_sphere, pad)              \
+  FIELD(clrt_light, type)              \
+  FIELD(clrt_light, intensity)         \
+  FIELD(clrt_light, vec)               \
+  FIELD(clrt_light, vec_lo)            \
+  FIELD(clrt_params, width)            \
+  FIELD(clrt_params, height)           \
+  FIELD(clrt_params, depth)            \
+  FIELD(clrt_params, n_spheres)        \
+  FIELD(clrt_params, n_lights)         \
+  FIELD(clrt_params, pad0)             \
+  FIELD(clrt_params, viewport)         \
+  FIELD(clrt_params, proj_d)           \
+  FIELD(clrt_params, epsilon)          \
+  FIELD(clrt_params, origin)           \
+  FIELD(clrt_params, origin_lo)        \
+  FIELD(clrt_params, rotation)         \
+  FIELD(clrt_params, rotation_lo)      \
+  FIELD(clrt_params, background)       \
+  FIELD(clrt_params, proj_d_lo)        \
+  FIELD(clrt_params, viewport_lo)      \
+  FIELD(clrt_params, epsilon_lo)       \
+  FIELD(clrt_params, pad1)             \
+  FIELD(clrt_ray_counts, primary)      \
+  FIELD(clrt_ray_counts, shadow)       \
+  FIELD(clrt_ray_counts, reflection)   \
+  FIELD(clrt_ray_counts, sphere_tests) \
   FIELD(clrt_bvh_node, lower)          \
   FIELD(clrt_bvh_node, first)          \
   FIELD(clrt_bvh_node, upper)          \

@@ -1,16 +1,23 @@
 // kernel_features.cpp - scene analysis for the specialized kernel.
 #include "render/kernel_features.hpp"
 
+#include <algorithm>
 #include <tuple>
+
+#include "render/conditioning.hpp"
 
 namespace clrt {
 
 bool KernelFeatures::operator==(const KernelFeatures& other) const {
   auto fields = [](const KernelFeatures& f) {
     return std::tie(f.sphere_count, f.light_count, f.light_types, f.has_ambient, f.has_point, f.has_directional,
-                    f.has_specular, f.has_reflective, f.depth, f.unroll_counts);
+                    f.has_specular, f.has_reflective, f.compensated, f.depth, f.unroll_counts);
   };
   return fields(*this) == fields(other);
+}
+
+size_t KernelFeatures::compensated_spheres() const {
+  return size_t(std::count(compensated.begin(), compensated.end(), true));
 }
 
 KernelFeatures kernel_features(const Scene& scene, int depth) {
@@ -26,6 +33,7 @@ KernelFeatures kernel_features(const Scene& scene, int depth) {
   for (const Sphere& sphere : scene.spheres) {
     f.has_specular |= sphere.specular != -1;
     f.has_reflective |= sphere.reflective > 0;
+    f.compensated.push_back(needs_compensation(sphere, scene));
   }
   f.depth = f.has_reflective ? depth : 0;
   f.unroll_counts = counts_unrolled(f.sphere_count, f.light_count);

@@ -31,6 +31,10 @@ struct KernelFeatures {
   bool has_directional = false;
   bool has_specular = false;    // some sphere with specular != -1
   bool has_reflective = false;  // some sphere with reflective > 0
+  // Each sphere's needs_compensation() (render/conditioning.hpp), in scene
+  // order: whether the robust kernel tests it with compensated arithmetic.
+  // A specialized robust build makes them constants (build_options.cpp).
+  std::vector<bool> compensated;
   // The recursion depth the kernel is built for: the requested one, folded
   // to 0 when nothing reflects so that one program serves every depth.
   int depth = 0;
@@ -38,6 +42,8 @@ struct KernelFeatures {
   // unrolled loops: counts_unrolled(sphere_count, light_count).
   bool unroll_counts = true;
 
+  // How many spheres are compensated.
+  size_t compensated_spheres() const;
   // Shadow rays are cast toward point and directional lights only.
   bool has_shadows() const { return has_point || has_directional; }
   // Reflection rays are traced only when something reflects and depth > 0.

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <iterator>
 
+#include "render/conditioning.hpp"
+
 namespace clrt {
 
 // The layout contract with the kernel: every member a 32-bit scalar, no
@@ -104,6 +106,7 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
     o.color[2] = static_cast<float>(s.color.z);
     o.specular = static_cast<float>(s.specular);
     o.reflective = static_cast<float>(s.reflective);
+    o.compensated = needs_compensation(s, scene);  // read by robust kernels only
     d.spheres.push_back(o);
   }
   for (const Light& l : scene.lights) {
