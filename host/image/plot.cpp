@@ -1,8 +1,6 @@
-// plot.cpp - charts drawn with OpenImageIO's ImageBufAlgo (see plot.hpp).
+// plot.cpp - charts: the layout here, the drawing with OpenImageIO's
+// ImageBufAlgo in the imaging module (image_io.hpp; see plot.hpp).
 #include "image/plot.hpp"
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,18 +8,21 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "image/image_file.hpp"
+#include "image/image_io.hpp"
 #include "util/log.hpp"
 
 namespace clrt {
 
-namespace OIA = OIIO::ImageBufAlgo;
-
 namespace {
 
-using Rgb = std::array<float, 3>;
+using imageio::AlignX;
+using imageio::AlignY;
+using imageio::Canvas;
+using Rgb = imageio::Rgb;
 const Rgb kBlack{0, 0, 0}, kGrid{0.88f, 0.88f, 0.88f}, kWhite{1, 1, 1}, kAxis{0.25f, 0.25f, 0.25f};
 // A colour-blind-friendly palette (Okabe-Ito), then greys.
 const Rgb kPalette[] = {{0.00f, 0.45f, 0.70f}, {0.84f, 0.37f, 0.00f}, {0.00f, 0.62f, 0.45f}, {0.80f, 0.47f, 0.65f},
@@ -35,39 +36,30 @@ struct Font {
 };
 const Font& font() {
   static const Font f = [] {
-    for (const char* name : {"DejaVuSans", "DejaVu Sans", ""}) {
-      if (OIA::text_size("0", 12, name).defined()) return Font{name, true};
-      (void)OIIO::geterror();
-    }
+    for (const char* name : {"DejaVuSans", "DejaVu Sans", ""})
+      if (imageio::module().text_size("0", 12, name).defined) return Font{name, true};
     log_message(LogLevel::Warning, "no font found for plot text (install fonts-dejavu-core); drawing without text");
     return Font{"", false};
   }();
   return f;
 }
 
-void text(OIIO::ImageBuf& img, int x, int y, const std::string& s, int size, const Rgb& color,
-          OIA::TextAlignX ax = OIA::TextAlignX::Left, OIA::TextAlignY ay = OIA::TextAlignY::Baseline) {
+void text(Canvas& img, int x, int y, const std::string& s, int size, const Rgb& color, AlignX ax = AlignX::Left,
+          AlignY ay = AlignY::Baseline) {
   if (s.empty() || !font().ok) return;
-  OIA::render_text(img, x, y, s, size, font().name, color, ax, ay);
+  img.text(x, y, s, size, font().name, color, ax, ay);
 }
 
 int text_width(const std::string& s, int size) {
   if (s.empty() || !font().ok) return 0;
-  OIIO::ROI r = OIA::text_size(s, size, font().name);
-  return r.defined() ? r.width() : 0;
+  const imageio::TextBox r = imageio::module().text_size(s, size, font().name);
+  return r.defined ? r.width : 0;
 }
 
 // Text rotated 90 degrees counter-clockwise, centred on (cx, cy).
-void vertical_text(OIIO::ImageBuf& img, int cx, int cy, const std::string& s, int size, const Rgb& color) {
+void vertical_text(Canvas& img, int cx, int cy, const std::string& s, int size, const Rgb& color) {
   if (s.empty() || !font().ok) return;
-  OIIO::ROI r = OIA::text_size(s, size, font().name);
-  if (!r.defined()) return;
-  OIIO::ImageBuf tmp(OIIO::ImageSpec(r.width() + 4, r.height() + 4, 3, OIIO::TypeDesc::FLOAT));
-  OIA::fill(tmp, kWhite);
-  OIA::render_text(tmp, 2 - r.xbegin, 2 - r.ybegin, s, size, font().name, color);
-  OIIO::ImageBuf rot = OIA::rotate270(tmp);
-  OIIO::ROI rr = rot.roi();
-  OIA::paste(img, cx - rr.width() / 2, cy - rr.height() / 2, 0, 0, rot);
+  img.vertical_text(cx, cy, s, size, font().name, color);
 }
 
 std::string tick_label(double v) {
@@ -121,39 +113,39 @@ Axis make_axis(const std::vector<Series>& series, bool use_x, bool log, bool fro
   return a;
 }
 
-void marker(OIIO::ImageBuf& img, int x, int y, int shape, const Rgb& c) {
+void marker(Canvas& img, int x, int y, int shape, const Rgb& c) {
   const int h = 4;
   switch (shape % 6) {
     case 0:
-      OIA::render_box(img, x - h, y - h, x + h, y + h, c, true);
+      img.box(x - h, y - h, x + h, y + h, c, true);
       break;
     case 1:
-      OIA::render_box(img, x - h, y - h, x + h, y + h, c, false);
-      OIA::render_box(img, x - h + 1, y - h + 1, x + h - 1, y + h - 1, c, false);
+      img.box(x - h, y - h, x + h, y + h, c, false);
+      img.box(x - h + 1, y - h + 1, x + h - 1, y + h - 1, c, false);
       break;
     case 2:
       for (int d = -1; d <= 1; ++d) {
-        OIA::render_line(img, x - h - 1, y + d, x + h + 1, y + d, c);
-        OIA::render_line(img, x + d, y - h - 1, x + d, y + h + 1, c);
+        img.line(x - h - 1, y + d, x + h + 1, y + d, c);
+        img.line(x + d, y - h - 1, x + d, y + h + 1, c);
       }
       break;
     case 3:
       for (int d = 0; d <= 1; ++d) {
-        OIA::render_line(img, x - h + d, y - h, x + h + d, y + h, c);
-        OIA::render_line(img, x - h + d, y + h, x + h + d, y - h, c);
+        img.line(x - h + d, y - h, x + h + d, y + h, c);
+        img.line(x - h + d, y + h, x + h + d, y - h, c);
       }
       break;
     case 4:  // filled diamond
       for (int d = -h - 1; d <= h + 1; ++d) {
         int w = h + 1 - std::abs(d);
-        OIA::render_line(img, x - w, y + d, x + w, y + d, c);
+        img.line(x - w, y + d, x + w, y + d, c);
       }
       break;
     default:  // hollow triangle
       for (int d = 0; d <= 1; ++d) {
-        OIA::render_line(img, x - h - 1, y + h - d, x + h + 1, y + h - d, c);
-        OIA::render_line(img, x - h - 1 + d, y + h, x + d, y - h - 1, c);
-        OIA::render_line(img, x + h + 1 - d, y + h, x - d, y - h - 1, c);
+        img.line(x - h - 1, y + h - d, x + h + 1, y + h - d, c);
+        img.line(x - h - 1 + d, y + h, x + d, y - h - 1, c);
+        img.line(x + h + 1 - d, y + h, x - d, y - h - 1, c);
       }
   }
 }
@@ -206,24 +198,24 @@ void write_plot(const std::string& path, const std::string& title, const std::st
   auto px = [&](double v) { return left + int(std::lround(ax.frac(v) * (right - left))); };
   auto py = [&](double v) { return bottom - int(std::lround(ay.frac(v) * (bottom - top))); };
 
-  OIIO::ImageBuf img(OIIO::ImageSpec(W, H, 3, OIIO::TypeDesc::FLOAT));
-  OIA::fill(img, kWhite);
+  const std::unique_ptr<Canvas> canvas = imageio::module().canvas(W, H, kWhite);
+  Canvas& img = *canvas;
   // Grid and ticks.
   for (double v : xt) {
     int x = px(v);
-    OIA::render_line(img, x, top, x, bottom, kGrid);
-    OIA::render_line(img, x, bottom, x, bottom + 5, kAxis);
-    text(img, x, bottom + 8, tick_label(v), fs, kBlack, OIA::TextAlignX::Center, OIA::TextAlignY::Top);
+    img.line(x, top, x, bottom, kGrid);
+    img.line(x, bottom, x, bottom + 5, kAxis);
+    text(img, x, bottom + 8, tick_label(v), fs, kBlack, AlignX::Center, AlignY::Top);
   }
   for (double v : yt) {
     int y = py(v);
-    OIA::render_line(img, left, y, right, y, kGrid);
-    OIA::render_line(img, left - 5, y, left, y, kAxis);
-    text(img, left - 8, y, tick_label(v), fs, kBlack, OIA::TextAlignX::Right, OIA::TextAlignY::Center);
+    img.line(left, y, right, y, kGrid);
+    img.line(left - 5, y, left, y, kAxis);
+    text(img, left - 8, y, tick_label(v), fs, kBlack, AlignX::Right, AlignY::Center);
   }
-  OIA::render_box(img, left, top, right, bottom, kAxis, false);
-  text(img, W / 2, fs + 10, title, fs + 3, kBlack, OIA::TextAlignX::Center, OIA::TextAlignY::Center);
-  text(img, (left + right) / 2, H - 10, xlabel, fs, kBlack, OIA::TextAlignX::Center, OIA::TextAlignY::Bottom);
+  img.box(left, top, right, bottom, kAxis, false);
+  text(img, W / 2, fs + 10, title, fs + 3, kBlack, AlignX::Center, AlignY::Center);
+  text(img, (left + right) / 2, H - 10, xlabel, fs, kBlack, AlignX::Center, AlignY::Bottom);
   vertical_text(img, 12 + fs / 2, (top + bottom) / 2, ylabel, fs, kBlack);
 
   // Series.
@@ -239,7 +231,7 @@ void write_plot(const std::string& path, const std::string& title, const std::st
       for (size_t i = 1; i < s.x.size(); ++i) {
         if (!ok(i - 1) || !ok(i)) continue;
         for (int d = 0; d <= 1; ++d)
-          OIA::render_line(img, px(s.x[i - 1]), py(s.y[i - 1]) + d, px(s.x[i]), py(s.y[i]) + d, colors[k]);
+          img.line(px(s.x[i - 1]), py(s.y[i - 1]) + d, px(s.x[i]), py(s.y[i]) + d, colors[k]);
       }
     for (size_t i = 0; i < s.x.size(); ++i) {
       if (!ok(i)) continue;
@@ -287,23 +279,21 @@ void write_plot(const std::string& path, const std::string& title, const std::st
           }
         if (covered < fewest) fewest = covered, x0 = cx, y0 = cy;
       }
-      OIA::render_box(img, x0, y0, x0 + bw, y0 + bh, kWhite, true);
-      OIA::render_box(img, x0, y0, x0 + bw, y0 + bh, kAxis, false);
+      img.box(x0, y0, x0 + bw, y0 + bh, kWhite, true);
+      img.box(x0, y0, x0 + bw, y0 + bh, kAxis, false);
       int r = 0;
       for (size_t k = 0; k < series.size(); ++k) {
         if (series[k].name.empty()) continue;
         int y = y0 + 4 + r * row + row / 2;
-        if (series[k].lines) OIA::render_line(img, x0 + 6, y, x0 + 30, y, colors[k]);
+        if (series[k].lines) img.line(x0 + 6, y, x0 + 30, y, colors[k]);
         marker(img, x0 + 18, y, int(k), colors[k]);
-        text(img, x0 + 38, y, series[k].name, fs, kBlack, OIA::TextAlignX::Left, OIA::TextAlignY::Center);
+        text(img, x0 + 38, y, series[k].name, fs, kBlack, AlignX::Left, AlignY::Center);
         ++r;
       }
     }
   }
 
-  std::vector<uint8_t> rgb(size_t(W) * H * 3);
-  img.get_pixels(img.roi(), OIIO::TypeDesc::UINT8, rgb.data());
-  write_rgb8(rgb, W, H, path);
+  write_rgb8(img.rgb8(), W, H, path);
 }
 
 }  // namespace clrt

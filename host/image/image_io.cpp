@@ -1,0 +1,107 @@
+// image_io.cpp - finds and loads the imaging module (see image_io.hpp).
+#include "image/image_io.hpp"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+
+#include "util/error.hpp"
+
+#ifndef CLRT_IMAGEIO_BUILD_DIR
+#define CLRT_IMAGEIO_BUILD_DIR ""
+#endif
+
+namespace clrt {
+namespace imageio {
+
+namespace {
+
+constexpr const char* kFileName = "clrt_imageio.so";
+
+std::atomic<bool> g_loaded{false};
+
+std::string executable_dir() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : exe.parent_path().string();
+}
+
+std::string where_looked(const std::vector<std::string>& candidates) {
+  std::string s;
+  for (const auto& c : candidates) s += (s.empty() ? "" : ", ") + c;
+  return s;
+}
+
+// The first candidate that exists, or UserError naming every place looked.
+std::string find_module() {
+  const std::vector<std::string> candidates = module_candidates();
+  for (const auto& c : candidates)
+    if (::access(c.c_str(), R_OK) == 0) return c;
+  throw UserError("the imaging module " + std::string(kFileName) +
+                  " (OpenImageIO, needed to read and write images) was not found (looked for " +
+                  where_looked(candidates) + "); build the target clrt_imageio, keep it beside the clrt binary, or " +
+                  "name it with CLRT_IMAGEIO_MODULE");
+}
+
+Module* load() {
+  const std::string path = find_module();
+  // RTLD_NOW: an unresolved symbol is an error here, not a crash later.
+  void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* err = ::dlerror();
+    throw UserError("cannot load the imaging module " + path + ": " + (err ? err : "unknown error"));
+  }
+  using Entry = Module* (*)(int);
+  auto entry = reinterpret_cast<Entry>(::dlsym(handle, kImageIoEntry));
+  Module* m = entry ? entry(kImageIoAbi) : nullptr;
+  if (!m)
+    throw UserError(path + " is not a clrt imaging module of this build (interface " + std::to_string(kImageIoAbi) +
+                    "); rebuild the target clrt_imageio");
+  // Never unloaded: OpenImageIO keeps threads and caches to the end.
+  return m;
+}
+
+}  // namespace
+
+std::vector<std::string> module_candidates() {
+  const char* env = std::getenv("CLRT_IMAGEIO_MODULE");
+  if (env && *env) return {env};
+  std::vector<std::string> out;
+  const std::string exe_dir = executable_dir();
+  if (!exe_dir.empty()) out.push_back(exe_dir + "/" + kFileName);
+  const std::string build_dir = CLRT_IMAGEIO_BUILD_DIR;
+  if (!build_dir.empty() && build_dir != exe_dir) out.push_back(build_dir + "/" + kFileName);
+  return out;
+}
+
+void check_module_present() {
+  if (!g_loaded.load()) (void)find_module();
+}
+
+Module& module() {
+  // A failed load is remembered and reported the same way on every call.
+  static std::once_flag once;
+  static Module* m = nullptr;
+  static std::string error;
+  std::call_once(once, [] {
+    try {
+      m = load();
+      g_loaded.store(true);
+    } catch (const UserError& e) {
+      error = e.what();
+    }
+  });
+  if (!m) throw UserError(error);
+  return *m;
+}
+
+bool module_loaded() {
+  return g_loaded.load();
+}
+
+}  // namespace imageio
+}  // namespace clrt
