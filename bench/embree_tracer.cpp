@@ -196,10 +196,10 @@ inline bool blocked(const World& w, V O, V D, float tmin, float tmax) {
   return ray.tfar < 0;  // -inf on a hit
 }
 
-}  // namespace
-
-int embree_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<float>& rgb,
-                  EmbreeBuildInfo* info, EmbreeSpheres kind) {
+// Builds the Embree scene, then renders into `out` (float RGB or RGBA8).
+template <class Pixel>
+int build_and_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<Pixel>& out,
+                     EmbreeBuildInfo* info, EmbreeSpheres kind) {
   World w{scenery(scene)};
   const V O = fv(scene.camera.position);
 
@@ -262,12 +262,24 @@ int embree_render(const clrt::Scene& scene, int width, int height, int depth, st
   local.build_ms = clrt::ms_since(t0);
 
   t0 = clrt::Clock::now();
-  const int threads = render_pixels(w, scene, width, height, depth, rgb);
+  const int threads = render_pixels(w, scene, width, height, depth, out);
   local.render_ms = clrt::ms_since(t0);
   local.threads = threads;
   check(device.d, "rendering");
   if (info) *info = local;
   return threads;
+}
+
+}  // namespace
+
+int embree_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<float>& rgb,
+                  EmbreeBuildInfo* info, EmbreeSpheres kind) {
+  return build_and_render(scene, width, height, depth, rgb, info, kind);
+}
+
+int embree_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<uint8_t>& rgba8,
+                  EmbreeBuildInfo* info, EmbreeSpheres kind) {
+  return build_and_render(scene, width, height, depth, rgba8, info, kind);
 }
 
 }  // namespace clrt_bench

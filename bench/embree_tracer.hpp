@@ -6,6 +6,7 @@
 // test_embree_tracer.cpp). Embree's types stay inside embree_tracer.cpp.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "scene/scene.hpp"
@@ -37,6 +38,9 @@ struct EmbreeBuildInfo {
 // build and render times. Returns the number of threads used. Throws
 // std::runtime_error when Embree reports an error.
 int embree_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<float>& rgb,
+                  EmbreeBuildInfo* info = nullptr, EmbreeSpheres spheres = EmbreeSpheres::User);
+// The same as 8-bit RGBA (width*height*4, the canvas rule), like omp_render.
+int embree_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<uint8_t>& rgba8,
                   EmbreeBuildInfo* info = nullptr, EmbreeSpheres spheres = EmbreeSpheres::User);
 
 }  // namespace clrt_bench

@@ -41,4 +41,9 @@ int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::
   return render_pixels(w, scene, width, height, depth, rgb);
 }
 
+int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<uint8_t>& rgba8) {
+  const World w{scenery(scene)};
+  return render_pixels(w, scene, width, height, depth, rgba8);
+}
+
 }  // namespace clrt_bench

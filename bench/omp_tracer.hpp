@@ -3,6 +3,7 @@
 // -O3 -march=native -fopenmp. A benchmark comparison for `clrt bench` only:
 // it is never used as the oracle (that is host/reference.cpp, in double).
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "scene/scene.hpp"
@@ -13,5 +14,8 @@ namespace clrt_bench {
 // unclamped, row 0 at the top) with all OpenMP threads. Returns the number
 // of threads used.
 int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<float>& rgb);
+// The same as 8-bit RGBA (width*height*4, the canvas rule: what clrt's
+// kernel writes for 8-bit outputs).
+int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<uint8_t>& rgba8);
 
 }  // namespace clrt_bench

@@ -23,7 +23,9 @@
 #endif
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "scene/scene.hpp"
@@ -122,15 +124,28 @@ V trace(const W& w, V O, V D, float tmin, float tmax, int depth, float eps) {
   return (1 - s.reflective) * local + s.reflective * refl;
 }
 
+// The book's canvas rule, as clrt's to_u8() and its kernel's 8-bit output:
+// clamp to [0, 255], round half to even, NaN to 0.
+inline uint8_t canvas_u8(float v) {
+  if (std::isnan(v)) return 0;
+  return uint8_t(std::nearbyint(v < 0 ? 0.f : (v > 255 ? 255.f : v)));
+}
+
 // The image: one pixel per loop iteration, rows shared among OpenMP
-// threads. Returns the number of threads.
-template <class W>
-int render_pixels(const W& w, const clrt::Scene& scene, int width, int height, int depth, std::vector<float>& rgb) {
+// threads, into `out` - float RGB (0..255 unclamped, 3 per pixel) or, like
+// clrt's 8-bit frames, RGBA bytes with the canvas rule (4 per pixel). Its
+// memory is reused when it has the frame's size. Returns the number of
+// threads.
+template <class W, class Pixel>
+int render_pixels(const W& w, const clrt::Scene& scene, int width, int height, int depth, std::vector<Pixel>& out) {
+  static_assert(std::is_same_v<Pixel, float> || std::is_same_v<Pixel, uint8_t>, "float RGB or 8-bit RGBA");
+  constexpr bool rgba8 = std::is_same_v<Pixel, uint8_t>;
+  constexpr size_t channels = rgba8 ? 4 : 3;
   const V O = fv(scene.camera.position);
   const auto& m = scene.camera.rotation;
   const float vw = float(scene.camera.viewport_w), vh = float(scene.camera.viewport_h);
   const float d = float(scene.camera.projection_plane_d), eps = float(scene.epsilon);
-  rgb.assign(size_t(width) * height * 3, 0.f);
+  out.resize(size_t(width) * height * channels);  // every pixel is written below
   int threads = 1;
 #pragma omp parallel
   {
@@ -150,10 +165,17 @@ int render_pixels(const W& w, const clrt::Scene& scene, int width, int height, i
                float(m[3]) * c.x + float(m[4]) * c.y + float(m[5]) * c.z,
                float(m[6]) * c.x + float(m[7]) * c.y + float(m[8]) * c.z};
         V col_v = trace(w, O, D, 1.f, kInf, depth, eps);
-        float* p = &rgb[(size_t(row) * width + col) * 3];
-        p[0] = col_v.x;
-        p[1] = col_v.y;
-        p[2] = col_v.z;
+        Pixel* p = &out[(size_t(row) * width + col) * channels];
+        if constexpr (rgba8) {
+          p[0] = canvas_u8(col_v.x);
+          p[1] = canvas_u8(col_v.y);
+          p[2] = canvas_u8(col_v.z);
+          p[3] = 255;
+        } else {
+          p[0] = col_v.x;
+          p[1] = col_v.y;
+          p[2] = col_v.z;
+        }
       }
     }
 #if defined(__SSE__)

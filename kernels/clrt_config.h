@@ -5,7 +5,6 @@
  *
  *   CLRT_PRECISION       CLRT_PRECISION_* of clrt_layout.h (default robust)
  *   CLRT_SPECIALIZED     scene-specific build: the options below are constants
- *   CLRT_DEPTH           specialized: the recursion depth
  *   CLRT_N_SPHERES, CLRT_N_LIGHTS  specialized, small scenes only: constant
  *                        loop bounds, loops unrolled (the host leaves them out
  *                        past a bound, kMaxUnrolled* in
@@ -13,16 +12,27 @@
  *   CLRT_LIGHT_TYPES     with the counts: each light's CLRT_LIGHT_*, "0,1,2"
  *   CLRT_HAS_AMBIENT, CLRT_HAS_POINT, CLRT_HAS_DIRECTIONAL,
  *   CLRT_HAS_SPECULAR, CLRT_HAS_REFLECTIVE  (0/1; generic build: all 1)
+ *   CLRT_COMPENSATED_SPHERES  specialized robust builds: 0 when no sphere
+ *                        needs compensated arithmetic, 1 when every one does
+ *   CLRT_COMPENSATED_FLAGS  with the counts, when the spheres differ: each
+ *                        sphere's clrt_sphere.compensated, "0,0,0,1"; with
+ *                        neither, each sphere's flag decides at run time
+ *                        (clrt_intersect.h)
  *   CLRT_BVH             walk the hierarchy (clrt_bvh.h) instead of testing
  *                        every sphere (the host's Accel, render/bvh.hpp)
  *   CLRT_COUNT_RAYS      write per-pixel ray counters
+ *   CLRT_OUT_RGBA8       store 8-bit RGBA (the canvas rule) instead of float
+ *                        RGB (clrt_lanes.h: TO_CANVAS)
+ *   CLRT_OUT_CLASSES     store each pixel's hit sphere and shadow mask
  *   CLRT_LANES           pixels per work-item: 1 (when absent), 4, 8 or 16;
  *                        the host picks it (default_lanes(), build_options.hpp)
  *   CLRT_PACKET_ROWS     rows of the work-item's block of pixels (1 when
  *                        absent; packet_rows(), build_options.hpp)
  *
  * Measurement knobs, never set by the host (--cl-options, see
- * docs/performance.md): CLRT_SHADOW_ALL_SPHERES, CLRT_LIB_POW. */
+ * docs/performance.md): CLRT_SHADOW_ALL_SPHERES, CLRT_LIB_POW, and
+ * CLRT_DEPTH (with CLRT_SPECIALIZED: the recursion depth as a constant;
+ * the host passes it at run time, which measured the same). */
 #ifndef CLRT_CONFIG_H
 #define CLRT_CONFIG_H
 
@@ -51,12 +61,19 @@
 #define CLRT_SPHERE_COUNT(params) ((params)->n_spheres)
 #define CLRT_LIGHT_COUNT(params) ((params)->n_lights)
 #endif
-#ifdef CLRT_SPECIALIZED
+/* The recursion depth is a constant where the host compiles it in
+ * (CLRT_DEPTH); otherwise it is read at run time, bounded by the explicit
+ * stack's frames: CLRT_DEPTH_BOUND where the host gives one (one program
+ * then serves every depth up to it), else CLRT_MAX_DEPTH. */
+#if defined(CLRT_SPECIALIZED) && defined(CLRT_DEPTH)
 #define CLRT_RECURSION_DEPTH(params) CLRT_DEPTH
 #define CLRT_STACK_FRAMES (CLRT_DEPTH + 1)
 #else
-#define CLRT_RECURSION_DEPTH(params) (min((params)->depth, CLRT_MAX_DEPTH))
-#define CLRT_STACK_FRAMES (CLRT_MAX_DEPTH + 1)
+#ifndef CLRT_DEPTH_BOUND
+#define CLRT_DEPTH_BOUND CLRT_MAX_DEPTH
+#endif
+#define CLRT_RECURSION_DEPTH(params) (min((params)->depth, CLRT_DEPTH_BOUND))
+#define CLRT_STACK_FRAMES (CLRT_DEPTH_BOUND + 1)
 #endif
 
 /* The generic build has every feature; a specialized one gets each from the

@@ -118,6 +118,28 @@ inline int lane_min4(int4 x) {
 #define STORE_LANES(lanes, value) CONCAT_EXPANDED(vstore, CLRT_LANES)((value), 0, (lanes))
 #endif
 
+/* ---- the stored colour (CLRT_OUT_RGBA8) --------------------------------- */
+/* A pixel's colour as stored: float (unclamped), or the book's canvas rule
+ * for 8-bit outputs - clamp to [0, 255], round half to even, NaN to 0 (what
+ * a saturating conversion does) - exactly the host's to_u8() of the float
+ * the host would have received (fp64 results are rounded to float first). */
+#ifdef CLRT_OUT_RGBA8
+typedef uchar CANVAS_T;
+#if CLRT_LANES == 1
+#define TO_CANVAS(v) convert_uchar_sat_rte((float)(v))
+#else
+#define TO_CANVAS(v) CONCAT_EXPANDED(CONCAT_EXPANDED(convert_uchar, CLRT_LANES), _sat_rte)(v)
+#endif
+#else
+typedef float CANVAS_T;
+#define TO_CANVAS(v) CONVERT_TO_FLOAT(v)
+#if CLRT_LANES == 1
+#define CONVERT_TO_FLOAT(v) ((float)(v))
+#else
+#define CONVERT_TO_FLOAT(v) (v)
+#endif
+#endif
+
 /* ---- per-lane ray counters (CLRT_COUNT_RAYS) --------------------------- */
 /* One clrt_ray_counts per lane's pixel. Without CLRT_COUNT_RAYS nothing is
  * ever added, and the unused counters are compiled away. */

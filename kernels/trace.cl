@@ -25,7 +25,7 @@
 #include "clrt_shade.h"
 
 __kernel void render(__global const clrt_params* params, __global const clrt_sphere* spheres,
-                     __global const clrt_light* lights, __global float* out, __global int* aux,
+                     __global const clrt_light* lights, __global CANVAS_T* out, __global int* aux,
                      __global clrt_ray_counts* ray_counts, const int x0, const int y0, const int tile_w,
                      const int tile_h, __global const clrt_bvh_node* nodes, __global const int* primitives) {
   const int gx = (int)get_global_id(0), gy = (int)get_global_id(1);
@@ -116,22 +116,25 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     result = vsel(k < sp, blended, result);
   }
 
-  /* One pixel per lane; lanes past the tile's right edge are dropped. */
+  /* One pixel per lane; lanes past the tile's edge are dropped. Only what
+   * the host asked for is stored (CLRT_OUT_*, clrt_config.h). */
 #if CLRT_LANES == 1
-  float red[1] = {(float)result.x}, green[1] = {(float)result.y}, blue[1] = {(float)result.z};
+  CANVAS_T red[1] = {TO_CANVAS(result.x)}, green[1] = {TO_CANVAS(result.y)}, blue[1] = {TO_CANVAS(result.z)};
   int hit_ids[1] = {hit_id}, shadow_masks[1] = {shadow_mask};
 #ifdef CLRT_COUNT_RAYS
   int primary[1] = {counts.primary}, shadow[1] = {counts.shadow}, reflection[1] = {counts.reflection},
       sphere_tests[1] = {counts.sphere_tests};
 #endif
 #else
-  float red[CLRT_LANES], green[CLRT_LANES], blue[CLRT_LANES];
+  CANVAS_T red[CLRT_LANES], green[CLRT_LANES], blue[CLRT_LANES];
+  STORE_LANES(red, TO_CANVAS(result.x));
+  STORE_LANES(green, TO_CANVAS(result.y));
+  STORE_LANES(blue, TO_CANVAS(result.z));
+#ifdef CLRT_OUT_CLASSES
   int hit_ids[CLRT_LANES], shadow_masks[CLRT_LANES];
-  STORE_LANES(red, result.x);
-  STORE_LANES(green, result.y);
-  STORE_LANES(blue, result.z);
   STORE_LANES(hit_ids, hit_id);
   STORE_LANES(shadow_masks, shadow_mask);
+#endif
 #ifdef CLRT_COUNT_RAYS
   int primary[CLRT_LANES], shadow[CLRT_LANES], reflection[CLRT_LANES], sphere_tests[CLRT_LANES];
   STORE_LANES(primary, counts.primary);
@@ -144,11 +147,17 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     const int jx = px + j % CLRT_PACKET_COLS, jy = py + j / CLRT_PACKET_COLS;
     if (jx >= tile_w || jy >= tile_h) continue;
     const int idx = jy * tile_w + jx;
+#ifdef CLRT_OUT_RGBA8
+    vstore4((uchar4)(red[j], green[j], blue[j], 255), idx, out);
+#else
     out[idx * 3 + 0] = red[j];
     out[idx * 3 + 1] = green[j];
     out[idx * 3 + 2] = blue[j];
+#endif
+#ifdef CLRT_OUT_CLASSES
     aux[idx * 2 + 0] = hit_ids[j];
     aux[idx * 2 + 1] = shadow_masks[j];
+#endif
 #ifdef CLRT_COUNT_RAYS
     ray_counts[idx].primary = primary[j];
     ray_counts[idx].shadow = shadow[j];

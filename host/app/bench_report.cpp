@@ -28,6 +28,7 @@ nlohmann::json bench_json(const BenchResult& r) {
       {"device", r.device},
       {"build_options", r.options},
       {"width", r.width},
+      {"pixels", r.rgba8 ? "rgba8" : "float"},
       {"height", r.height},
       {"depth", r.depth},
       {"repeat", r.repeat},
@@ -93,14 +94,15 @@ nlohmann::json bench_json(const BenchResult& r) {
 void print_bench(const BenchResult& r) {
   const std::string source = time_source_note(r.host_timed_launches, r.launches);
   std::printf("device         %s\n", r.device.c_str());
-  std::printf("image          %dx%d, depth %d, %d timed rounds after a warm-up\n", r.width, r.height, r.depth,
-              r.repeat);
+  std::printf("image          %dx%d, depth %d, %s, %d timed rounds after a warm-up\n", r.width, r.height, r.depth,
+              r.rgba8 ? "8-bit RGBA frames" : "float RGB frames", r.repeat);
   std::printf("options        %s\n", r.options.c_str());
   std::printf("build cold     %s (no program cache)\n", format_stats(r.build_cold, "ms", 1).c_str());
   std::printf("build warm     %s%s\n", format_stats(r.build_warm, "ms", 1).c_str(),
               r.build_warm_cached ? " (cache hit)" : " (cache miss)");
   std::printf("upload         %s\n", format_stats(r.upload, "ms", 3).c_str());
-  std::printf("frame          %s (warm: launches + download into host memory)\n", format_stats(r.frame).c_str());
+  std::printf("frame          %s (warm: launches + the result in host memory, in the frame's format)\n",
+              format_stats(r.frame).c_str());
   std::printf("kernel         %s%s\n", format_stats(r.kernel).c_str(), source.c_str());
   std::printf("download       %s\n", format_stats(r.download).c_str());
   if (r.shares.size() > 1) {

@@ -18,6 +18,9 @@ void add_bench_command(CLI::App& app) {
   auto no_omp = std::make_shared<bool>(false);
   auto no_embree = std::make_shared<bool>(false);
   auto no_reference = std::make_shared<bool>(false);
+  auto float_frames = std::make_shared<bool>(false);
+  auto no_map = std::make_shared<bool>(false);
+  auto no_overlap = std::make_shared<bool>(false);
   auto* cmd = app.add_subcommand(
       "bench", "Benchmark the OpenCL renderer against the reference, an OpenMP tracer and an Embree tracer");
   o->add(cmd, /*with_engine=*/false);
@@ -27,7 +30,16 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--no-embree", *no_embree, "Skip the Embree comparison");
   cmd->add_flag("--no-reference", *no_reference,
                 "Skip the scalar double reference (it tests every sphere: hours on large scenes)");
-  cmd->callback([o, repeat, as_json, no_omp, no_embree, no_reference] {
+  cmd->add_flag("--float", *float_frames,
+                "Time frames of float colour (what .exr outputs get) instead of 8-bit RGBA (.png and other 8-bit "
+                "outputs); the OpenMP and Embree tracers write the same format");
+  cmd->add_flag("--no-map", *no_map,
+                "Read the results into host memory even where the device could map them (the path of discrete "
+                "devices)");
+  cmd->add_flag("--no-overlap", *no_overlap,
+                "Where results are read, one band at a time (default: a band's results travel while the next "
+                "band's kernel runs)");
+  cmd->callback([o, repeat, as_json, no_omp, no_embree, no_reference, float_frames, no_map, no_overlap] {
     o->validate();
     Scene scene = load_scene(o->scene_path);
     BenchSettings s;
@@ -38,7 +50,13 @@ void add_bench_command(CLI::App& app) {
     s.omp = !*no_omp;
     s.embree = !*no_embree;
     s.reference = !*no_reference;
-    BenchResult r = run_bench(scene, o->device.devices(), o->settings(), s);
+    // Frames in an output's format, without the per-pixel classification
+    // that only comparisons with the reference read.
+    RenderSettings settings = o->settings();
+    settings.kernel.output = {*float_frames ? PixelFormat::Float : PixelFormat::Rgba8, /*classes=*/false};
+    settings.map_results = !*no_map;
+    settings.overlap_downloads = !*no_overlap;
+    BenchResult r = run_bench(scene, o->device.devices(), settings, s);
     if (*as_json) {
       nlohmann::json j = bench_json(r);
       j["scene"] = o->scene_path;

@@ -28,7 +28,10 @@ void add_render_command(CLI::App& app) {
     Scene scene = load_scene(o->scene_path);
     int depth = o->image.effective_depth(scene);
     EngineRun run;
-    Image img = run_engine(o->engine, scene, *o, depth, &run);
+    // The kernel writes what the file needs: 8-bit RGBA for 8-bit formats,
+    // float colour for float ones, never the per-pixel classification.
+    const FrameContents contents{output_pixel_format(*out), /*classes=*/false};
+    Image img = run_engine(o->engine, scene, *o, depth, &run, contents);
     write_image(img, *out);
     // The report goes to stderr when the image itself goes to stdout.
     std::FILE* report = target.kind == OutputKind::File ? stdout : stderr;

@@ -91,7 +91,8 @@ void add_scaling_command(CLI::App& app) {
       auto bar = std::make_shared<ProgressBar>(std::cerr);
       settings->progress = [bar](int done, int total, const std::string& what) { bar->show(done, total, what); };
     }
-    const RenderSettings render{kernel->config(), launch->tiles(), launch->local()};
+    RenderSettings render{kernel->config(), launch->tiles(), launch->local()};
+    render.kernel.output = {PixelFormat::Rgba8, /*classes=*/false};  // like bench: a PNG's frames
     const auto rows = run_scaling(device->devices(), render, *settings);
     print_scaling(rows);
     if (!csv->empty()) {

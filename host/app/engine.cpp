@@ -6,7 +6,8 @@
 
 namespace clrt {
 
-Image run_engine(const std::string& engine, const Scene& scene, const RenderOptions& o, int depth, EngineRun* run) {
+Image run_engine(const std::string& engine, const Scene& scene, const RenderOptions& o, int depth, EngineRun* run,
+                 FrameContents contents) {
   EngineRun r;
   r.engine = engine;
   Image img;
@@ -16,7 +17,9 @@ Image run_engine(const std::string& engine, const Scene& scene, const RenderOpti
     r.wall_ms = ms_since(t0);
     r.device = "host (scalar double)";
   } else {
-    Renderer renderer(o.device.devices(), o.settings());
+    RenderSettings settings = o.settings();
+    settings.kernel.output = contents;
+    Renderer renderer(o.device.devices(), settings);
     renderer.prepare(scene, o.image.width, o.image.height, depth);
     img = renderer.render();
     r.frame = renderer.stats();

@@ -18,6 +18,9 @@ struct EngineRun {
   FrameStats frame;     // opencl: build, upload, kernel, per-device shares
 };
 
-Image run_engine(const std::string& engine, const Scene& scene, const RenderOptions& o, int depth, EngineRun* run);
+// `contents`: what the OpenCL frame must hold (render asks for what its
+// output file needs); the reference always gives float colour and classes.
+Image run_engine(const std::string& engine, const Scene& scene, const RenderOptions& o, int depth, EngineRun* run,
+                 FrameContents contents = {});
 
 }  // namespace clrt

@@ -23,18 +23,27 @@ LaunchTime launch_time(double event_ms, double wall_ms) {
   return t;
 }
 
-LaunchTime run_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::NDRange& global,
-                     const cl::NDRange& local) {
-  cl::Event ev;
-  const auto launched = Clock::now();
-  queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &ev);
-  ev.wait();
-  const double wall_ms = ms_since(launched);
+TimedLaunch start_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::NDRange& global,
+                        const cl::NDRange& local) {
+  TimedLaunch launch;
+  launch.launched = Clock::now();
+  queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &launch.event);
+  return launch;
+}
+
+LaunchTime finish_timed(const TimedLaunch& launch) {
+  launch.event.wait();
+  const double wall_ms = ms_since(launch.launched);
   // As doubles: a driver that reports END before START gives a negative
   // (implausible) time instead of a wrapped-around huge one.
-  const double start = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_START>());
-  const double end = double(ev.getProfilingInfo<CL_PROFILING_COMMAND_END>());
+  const double start = double(launch.event.getProfilingInfo<CL_PROFILING_COMMAND_START>());
+  const double end = double(launch.event.getProfilingInfo<CL_PROFILING_COMMAND_END>());
   return launch_time((end - start) * 1e-6, wall_ms);
+}
+
+LaunchTime run_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::NDRange& global,
+                     const cl::NDRange& local) {
+  return finish_timed(start_timed(queue, kernel, global, local));
 }
 
 std::string time_source(int host_timed, int launches) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cl/cl.hpp"
+#include "util/timer.hpp"
 
 namespace clrt {
 
@@ -36,6 +37,20 @@ LaunchTime launch_time(double event_ms, double wall_ms);
 // here.
 LaunchTime run_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::NDRange& global,
                      const cl::NDRange& local);
+
+// The same in two steps, so that the host can work (download another tile)
+// while the launch runs: start_timed() enqueues without waiting,
+// finish_timed() waits and times. The wall time then runs from the enqueue
+// to the end of the wait, longer than the launch when the host was busy
+// elsewhere or the launch queued behind another, so a pipelined caller
+// should rely on it only where the events were plausible before.
+struct TimedLaunch {
+  cl::Event event;
+  Clock::time_point launched;
+};
+TimedLaunch start_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::NDRange& global,
+                        const cl::NDRange& local);
+LaunchTime finish_timed(const TimedLaunch& launch);
 
 // Where a total over `launches` launches came from, `host_timed` of which
 // used the host clock: "events", "host" or "mixed" (JSON/CSV value).

@@ -38,6 +38,25 @@ PixelAgreement compare_rgb(const std::vector<float>& a, const std::vector<float>
   return p;
 }
 
+PixelAgreement compare_rgba8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int levels) {
+  PixelAgreement p;
+  if (a.size() != b.size()) {
+    p.differ = 1;
+    p.max_levels = 255;
+    return p;
+  }
+  const size_t pixels = a.size() / 4;
+  size_t differ = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    int worst = 0;
+    for (size_t c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(a[4 * i + c]) - int(b[4 * i + c])));
+    p.max_levels = std::max(p.max_levels, worst);
+    if (worst > levels) ++differ;
+  }
+  if (pixels) p.differ = double(differ) / double(pixels);
+  return p;
+}
+
 BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
                       const BenchSettings& s) {
   BenchResult r;
@@ -98,11 +117,23 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   // the same image, so background load on a shared machine falls on all
   // alike and each round gives one like-for-like ratio per comparison. The
   // Embree frame builds its BVH first; only its render is the frame.
+  // The tracers write the frame's format too (float RGB, or 8-bit RGBA with
+  // the canvas rule), into memory reused from frame to frame like clrt's.
+  const bool rgba8 = settings.kernel.output.pixels == PixelFormat::Rgba8;
+  r.rgba8 = rgba8;
   std::vector<float> omp_rgb, embree_rgb;
+  std::vector<uint8_t> omp_rgba8, embree_rgba8;
   clrt_bench::EmbreeBuildInfo embree_info;
-  if (s.omp) r.omp_threads = clrt_bench::omp_render(scene, s.width, s.height, s.depth, omp_rgb);  // warm-up
-  if (s.embree)
-    r.embree_threads = clrt_bench::embree_render(scene, s.width, s.height, s.depth, embree_rgb, &embree_info);
+  const auto omp_frame = [&] {
+    return rgba8 ? clrt_bench::omp_render(scene, s.width, s.height, s.depth, omp_rgba8)
+                 : clrt_bench::omp_render(scene, s.width, s.height, s.depth, omp_rgb);
+  };
+  const auto embree_frame = [&] {
+    return rgba8 ? clrt_bench::embree_render(scene, s.width, s.height, s.depth, embree_rgba8, &embree_info)
+                 : clrt_bench::embree_render(scene, s.width, s.height, s.depth, embree_rgb, &embree_info);
+  };
+  if (s.omp) r.omp_threads = omp_frame();  // warm-up
+  if (s.embree) r.embree_threads = embree_frame();
   std::vector<double> frames, downloads, omp_ms, frame_ratio, kernel_ratio, embree_ms, embree_build, embree_ratio;
   for (int i = 0; i < r.repeat; ++i) {
     cl.render_into(r.image);  // like the OpenMP tracer's, the image's memory is reused
@@ -114,20 +145,20 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
     r.host_timed_launches += frame.host_timed_launches;
     if (s.omp) {
       const auto t1 = Clock::now();
-      r.omp_threads = clrt_bench::omp_render(scene, s.width, s.height, s.depth, omp_rgb);
+      r.omp_threads = omp_frame();
       omp_ms.push_back(ms_since(t1));
       if (frames.back() > 0) frame_ratio.push_back(omp_ms.back() / frames.back());
       if (r.kernel_ms.back() > 0) kernel_ratio.push_back(omp_ms.back() / r.kernel_ms.back());
     }
     if (s.embree) {
-      r.embree_threads = clrt_bench::embree_render(scene, s.width, s.height, s.depth, embree_rgb, &embree_info);
+      r.embree_threads = embree_frame();
       embree_ms.push_back(embree_info.render_ms);
       embree_build.push_back(embree_info.build_ms);
       if (frames.back() > 0) embree_ratio.push_back(embree_ms.back() / frames.back());
     }
   }
   if (s.omp && s.embree) {
-    const PixelAgreement a = compare_rgb(embree_rgb, omp_rgb);
+    const PixelAgreement a = rgba8 ? compare_rgba8(embree_rgba8, omp_rgba8) : compare_rgb(embree_rgb, omp_rgb);
     r.embree_vs_omp_differ = a.differ;
     r.embree_vs_omp_max_levels = a.max_levels;
   }

@@ -48,6 +48,7 @@ constexpr double kFlopPerSphereTest = 25;
 struct BenchResult {
   std::string device, options;
   int width = 0, height = 0, depth = 0, repeat = 0;
+  bool rgba8 = false;            // frames (clrt's and the tracers') held as 8-bit RGBA, else float RGB
   Stats build_cold, build_warm;  // ms per build of every device (the longest, they run in parallel)
   bool build_warm_cached = false;
   Stats upload;                // ms, scene buffers (one per build above)
@@ -78,8 +79,8 @@ struct BenchResult {
   double embree_build_ms = 0;   // embree_build.median
   int embree_threads = 0;
   Stats speedup_vs_embree;  // per round: Embree frame / clrt frame
-  // The Embree image against the OpenMP tracer's (both float, the same
-  // algorithm; last timed round): the fraction of pixels where a channel
+  // The Embree image against the OpenMP tracer's (both in the frame's
+  // format, float or 8-bit; the same algorithm; last timed round): the fraction of pixels where a channel
   // differs by more than one level of 255 after clamping and rounding, and
   // the largest such difference. -1: not checked (no OpenMP or no Embree run).
   double embree_vs_omp_differ = -1;
@@ -100,6 +101,8 @@ struct PixelAgreement {
   int max_levels = 0;
 };
 PixelAgreement compare_rgb(const std::vector<float>& a, const std::vector<float>& b, int levels = 1);
+// The same for two 8-bit RGBA images (width*height*4; alpha ignored).
+PixelAgreement compare_rgba8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int levels = 1);
 
 BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
                       const BenchSettings& s);

@@ -1,6 +1,8 @@
-// image.hpp - an RGB float image (unclamped, 0..255 scale) plus per-pixel
-// classification (which sphere the primary ray hit, which lights were
-// shadowed there), and its 8-bit quantization. Files: image_file.hpp.
+// image.hpp - a rendered frame: RGB colour (unclamped doubles on the 0..255
+// scale, or 8-bit RGBA already quantized by the kernel) plus, where asked
+// for, per-pixel classification (which sphere the primary ray hit, which
+// lights were shadowed there); and the 8-bit quantization. Files:
+// image_file.hpp.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -8,21 +10,44 @@
 
 namespace clrt {
 
+// How a frame's colour is held: what the output needs, and no more.
+enum class PixelFormat {
+  Float,  // rgb: unclamped doubles (float outputs, comparisons with the reference)
+  Rgba8,  // rgba8: the canvas rule of to_u8() applied, alpha 255 (8-bit outputs)
+};
+
+// What a frame carries. The OpenCL kernel writes only these
+// (render/build_options.hpp turns them into -D options): an 8-bit PNG needs
+// neither float colour nor classification, `compare` needs both.
+struct FrameContents {
+  PixelFormat pixels = PixelFormat::Float;
+  bool classes = true;  // hit and shadowed
+  bool operator==(const FrameContents& o) const { return pixels == o.pixels && classes == o.classes; }
+  bool operator!=(const FrameContents& o) const { return !(*this == o); }
+};
+
 struct Image {
   int width = 0, height = 0;
-  std::vector<double> rgb;        // width*height*3, row 0 at the top, unclamped
-  std::vector<int32_t> hit;       // primary-ray sphere index, -1 = background
-  std::vector<int32_t> shadowed;  // bit i: light i blocked at the primary hit
+  FrameContents contents;
+  std::vector<double> rgb;        // Float: width*height*3, row 0 at the top, unclamped
+  std::vector<uint8_t> rgba8;     // Rgba8: width*height*4, row 0 at the top
+  std::vector<int32_t> hit;       // with classes: primary-ray sphere index, -1 = background
+  std::vector<int32_t> shadowed;  // with classes: bit i: light i blocked at the primary hit
 
   Image() = default;
-  Image(int w, int h)
-      : width(w), height(h), rgb(size_t(w) * h * 3, 0.0), hit(size_t(w) * h, -1), shadowed(size_t(w) * h, 0) {}
+  Image(int w, int h) : Image(w, h, FrameContents{}) {}
+  Image(int w, int h, FrameContents c);
   size_t pixels() const { return size_t(width) * height; }
+  // Whether the image has this size and contents, with every buffer sized
+  // for them (a frame can then be rendered into it without reallocation).
+  bool holds(int w, int h, FrameContents c) const;
 };
 
 // Canvas semantics: clamp to [0, 255], round to nearest with ties to even;
 // NaN becomes 0 (like a Uint8ClampedArray).
 uint8_t to_u8(double v);
+// The image's 8-bit RGB (width*height*3): quantized from Float colour, or
+// Rgba8's colour without its alpha.
 std::vector<uint8_t> to_u8(const Image& img);
 
 }  // namespace clrt

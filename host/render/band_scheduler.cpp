@@ -48,18 +48,24 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
     rows = max_rows;  // one device, no limit: as few launches as memory allows
   rows = std::max(1, std::min(rows, max_rows));
 
-  int y0 = 0, n = 0;
-  while (queue.take(rows, policy.band_rows == 0, y0, n)) {
-    auto t0 = std::chrono::steady_clock::now();
-    const LaunchTime launch = r.render_tile(0, y0, W, n, img);
+  // Up to r.tiles_in_flight() bands at once: on devices whose results are
+  // read over a bus, band k's results travel and are converted while band
+  // k+1's kernel runs. Band sizes adapt to the last finished band.
+  struct Band {
+    int rows;
+  };
+  std::vector<Band> in_flight;  // oldest first
+  const auto finish_oldest = [&] {
+    const int n = in_flight.front().rows;
+    in_flight.erase(in_flight.begin());
+    const LaunchTime launch = r.finish_tile(img);
     const double ms = launch.ms;
     share.host_timed_launches += !launch.from_events;
-    share.busy_ms += ms_since(t0);
     share.kernel_ms += ms;
     share.max_launch_ms = std::max(share.max_launch_ms, ms);
     share.tiles += 1;
     share.rows += n;
-    if (policy.band_rows > 0) continue;
+    if (policy.band_rows > 0) return;
     // Adapt: aim at 80% of the launch limit, or (no limit) 100 ms per band
     // with several devices, growing at most 4x per step.
     const double per_row = std::max(ms, 1e-3) / n;
@@ -68,7 +74,16 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
       double want = std::floor(target / per_row);
       rows = int(std::max(1.0, std::min({want, 4.0 * n, double(max_rows)})));
     }
+  };
+  const auto t0 = Clock::now();
+  int y0 = 0, n = 0;
+  while (queue.take(rows, policy.band_rows == 0, y0, n)) {
+    r.submit_tile(0, y0, W, n, img);
+    in_flight.push_back({n});
+    while (int(in_flight.size()) >= r.tiles_in_flight()) finish_oldest();
   }
+  while (!in_flight.empty()) finish_oldest();
+  share.busy_ms = ms_since(t0);
 }
 
 }  // namespace

@@ -73,7 +73,10 @@ std::string define(const std::string& name, bool value) {
 // The -D options of a specialized build (kernels/clrt_config.h reads them).
 void add_specialization(const KernelFeatures& features, std::vector<std::string>& options) {
   options.push_back("-DCLRT_SPECIALIZED");
-  options.push_back(define("CLRT_DEPTH", features.depth));
+  // Not the depth: the kernel reads it at run time, so one program serves
+  // every depth (a sweep builds once, not once per depth). Compiled in
+  // (-DCLRT_DEPTH, still a knob) it saved under 1% of the demo's kernel
+  // time, within the noise (docs/performance.md, "What specialization buys").
   options.push_back(define("CLRT_HAS_AMBIENT", features.has_ambient));
   options.push_back(define("CLRT_HAS_POINT", features.has_point));
   options.push_back(define("CLRT_HAS_DIRECTIONAL", features.has_directional));
@@ -92,6 +95,25 @@ void add_specialization(const KernelFeatures& features, std::vector<std::string>
   options.push_back(types);
 }
 
+// Robust builds test each sphere with compensated or cheap arithmetic, as its
+// flag says (clrt_sphere.compensated). A specialized build compiles out the
+// path no sphere takes when the spheres agree; with unrolled counts it makes
+// each sphere's flag a constant, so that every unrolled test is one straight
+// path: the flag read at run time cost 10% of the demo's kernel time against
+// the constants (docs/performance.md). Otherwise the flags decide at run time.
+void add_compensation(const KernelFeatures& features, std::vector<std::string>& options) {
+  const size_t compensated = features.compensated_spheres();
+  if (compensated == 0 || compensated == features.compensated.size()) {
+    options.push_back(define("CLRT_COMPENSATED_SPHERES", compensated > 0));
+    return;
+  }
+  if (!features.unroll_counts) return;
+  std::string flags = "-DCLRT_COMPENSATED_FLAGS=";
+  for (size_t i = 0; i < features.compensated.size(); ++i)
+    flags += (i ? "," : "") + std::to_string(int(features.compensated[i]));
+  options.push_back(flags);
+}
+
 }  // namespace
 
 std::vector<std::string> build_option_list(const KernelConfig& cfg, const KernelFeatures& features,
@@ -102,10 +124,14 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
   if (cfg.denorms_zero) options.push_back("-cl-denorms-are-zero");
   if (cfg.precision == Precision::Fast) options.push_back("-cl-fast-relaxed-math");
   if (cfg.count_rays) options.push_back("-DCLRT_COUNT_RAYS");
+  // What the kernel stores per pixel: only what the caller reads.
+  if (cfg.output.pixels == PixelFormat::Rgba8) options.push_back("-DCLRT_OUT_RGBA8");
+  if (cfg.output.classes) options.push_back("-DCLRT_OUT_CLASSES");
   if (int lanes = kernel_lanes(cfg); lanes > 1) options.push_back(define("CLRT_LANES", lanes));
   if (int rows = packet_rows(cfg); rows > 1) options.push_back(define("CLRT_PACKET_ROWS", rows));
   if (uses_bvh(cfg.accel, features.sphere_count, cfg.precision)) options.push_back("-DCLRT_BVH");
   if (cfg.specialize) add_specialization(features, options);
+  if (cfg.specialize && cfg.precision == Precision::Robust) add_compensation(features, options);
   if (!cfg.extra_options.empty()) options.push_back(cfg.extra_options);
   return options;
 }

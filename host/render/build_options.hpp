@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cl/device.hpp"
+#include "image/image.hpp"
 #include "render/bvh.hpp"
 #include "render/kernel_features.hpp"
 #include "render/precision.hpp"
@@ -23,6 +24,9 @@ struct KernelConfig {
   std::string kernel_dir;     // "" = embedded kernels
   std::string extra_options;  // appended verbatim (development)
   Accel accel = Accel::Auto;  // test every sphere or walk the hierarchy (render/bvh.hpp)
+  // What each pixel's result holds (8-bit or float colour, classification):
+  // the kernel writes exactly this.
+  FrameContents output;
 };
 
 // Pixels per work-item: cfg.lanes if set. The renderer sets it from

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 
 #include "cl/kernel_source.hpp"
 #include "cl/program.hpp"
@@ -26,12 +27,14 @@ cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::
 
 }  // namespace
 
-DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local, bool map_results)
-    : device_(device), config_(std::move(config)), requested_lanes_(config_.lanes), local_(local) {
+DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local, bool map_results,
+                               bool overlap)
+    : device_(device), config_(std::move(config)), requested_lanes_(config_.lanes), local_(local), overlap_(overlap) {
   if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);
   map_results_ = map_results && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
   context_ = cl::Context(device_.device);
   queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
+  if (!map_results_) transfer_queue_ = cl::CommandQueue(context_, device_.device);
   source_ = load_kernel_source("trace.cl", config_.kernel_dir);
 }
 
@@ -95,27 +98,66 @@ void DeviceRenderer::check_local_size() const {
                     " per dimension)");
 }
 
-void DeviceRenderer::ensure_tile_buffers(size_t pixels) {
-  if (pixels <= tile_capacity_) return;
+DeviceRenderer::~DeviceRenderer() {
+  drain();
+}
+
+void DeviceRenderer::drain() noexcept {
+  try {
+    if (queue_()) queue_.finish();
+    if (transfer_queue_()) transfer_queue_.finish();
+  } catch (...) {  // a lost device: nothing left to wait for
+  }
+  pending_.clear();
+}
+
+void DeviceRenderer::ensure_slot(ResultSlot& slot, size_t pixels) {
+  if (pixels <= slot.capacity) return;
   // Where the device works in host memory, the results are allocated there
-  // and mapped after each tile (no copy); elsewhere they are read into
-  // staging vectors kept from tile to tile (no new pages per tile).
+  // and mapped after each tile (no copy); elsewhere they are read into the
+  // slot's host vectors. Buffers the kernel does not write (classification,
+  // counters) get one element.
   const cl_mem_flags flags = CL_MEM_WRITE_ONLY | (map_results_ ? CL_MEM_ALLOC_HOST_PTR : 0);
-  colors_ = cl::Buffer(context_, flags, pixels * 3 * sizeof(float));
-  classes_ = cl::Buffer(context_, flags, pixels * 2 * sizeof(cl_int));
-  ray_counters_ = cl::Buffer(context_, CL_MEM_WRITE_ONLY, (config_.count_rays ? pixels : 1) * sizeof(clrt_ray_counts));
-  tile_capacity_ = pixels;
+  slot.colors = cl::Buffer(context_, flags, pixels * colour_bytes_per_pixel());
+  slot.classes = cl::Buffer(context_, flags, (config_.output.classes ? pixels : 1) * 2 * sizeof(cl_int));
+  slot.counters = cl::Buffer(context_, CL_MEM_WRITE_ONLY, (config_.count_rays ? pixels : 1) * sizeof(clrt_ray_counts));
+  slot.capacity = pixels;
+}
+
+size_t DeviceRenderer::colour_bytes_per_pixel() const {
+  return config_.output.pixels == PixelFormat::Rgba8 ? 4 : 3 * sizeof(float);
 }
 
 LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst) {
+  submit_tile(x0, y0, w, h, dst);
+  return finish_tile(dst);
+}
+
+void DeviceRenderer::submit_tile(int x0, int y0, int w, int h, Image& dst) {
+  if (int(pending_.size()) >= tiles_in_flight()) throw std::logic_error("submit_tile: too many tiles in flight");
+  try {
+    enqueue_tile(x0, y0, w, h, dst);
+  } catch (...) {
+    drain();  // a read enqueued before the error must not land after it
+    throw;
+  }
+}
+
+void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
+  if (!dst.holds(width_, height_, config_.output)) throw std::logic_error("submit_tile: image of another frame");
   const size_t n = size_t(w) * h;
-  ensure_tile_buffers(n);
+  PendingTile tile;
+  tile.x0 = x0, tile.y0 = y0, tile.w = w, tile.h = h;
+  tile.slot = next_slot_;
+  next_slot_ = (next_slot_ + 1) % 2;
+  ResultSlot& slot = slots_[tile.slot];  // free: its last tile was finished
+  ensure_slot(slot, n);
   kernel_.setArg(0, params_);
   kernel_.setArg(1, spheres_);
   kernel_.setArg(2, lights_);
-  kernel_.setArg(3, colors_);
-  kernel_.setArg(4, classes_);
-  kernel_.setArg(5, ray_counters_);
+  kernel_.setArg(3, slot.colors);
+  kernel_.setArg(4, slot.classes);
+  kernel_.setArg(5, slot.counters);
   kernel_.setArg(6, cl_int(x0));
   kernel_.setArg(7, cl_int(y0));
   kernel_.setArg(8, cl_int(w));
@@ -138,48 +180,130 @@ LaunchTime DeviceRenderer::render_tile(int x0, int y0, int w, int h, Image& dst)
   const size_t global_x = (gw + lx - 1) / lx * lx, global_y = (gh + ly - 1) / ly * ly;
   if (global_x < gw || global_y < gh) throw std::logic_error("launch does not cover the tile");
   cl::NDRange global(global_x, global_y), local(lx, ly);
-  const LaunchTime time = run_timed(queue_, kernel_, global, local);
+  tile.launch = start_timed(queue_, kernel_, global, local);
 
-  auto t0 = std::chrono::steady_clock::now();
-  const float* rgb = nullptr;
+  if (!map_results_) {
+    // The reads go on the second queue after the kernel: the next tile's
+    // kernel (on queue_, into the other slot) runs while they travel.
+    const std::vector<cl::Event> after{tile.launch.event};
+    const bool rgba8 = config_.output.pixels == PixelFormat::Rgba8;
+    const size_t colour_bytes = n * colour_bytes_per_pixel();
+    void* colour_target;
+    if (rgba8 && x0 == 0 && w == dst.width) {
+      // 8-bit rows are already the image's bytes: read them in place.
+      tile.colour_in_place = true;
+      colour_target = &dst.rgba8[size_t(y0) * dst.width * 4];
+    } else if (rgba8) {
+      if (slot.rgba8.size() < n * 4) slot.rgba8.resize(n * 4);
+      colour_target = slot.rgba8.data();
+    } else {
+      if (slot.rgb.size() < n * 3) slot.rgb.resize(n * 3);
+      colour_target = slot.rgb.data();
+    }
+    cl::Event ev;
+    transfer_queue_.enqueueReadBuffer(slot.colors, CL_FALSE, 0, colour_bytes, colour_target, &after, &ev);
+    tile.reads.push_back(ev);
+    if (config_.output.classes) {
+      if (slot.aux.size() < n * 2) slot.aux.resize(n * 2);
+      transfer_queue_.enqueueReadBuffer(slot.classes, CL_FALSE, 0, n * 2 * sizeof(cl_int), slot.aux.data(), &after,
+                                        &ev);
+      tile.reads.push_back(ev);
+    }
+    if (config_.count_rays) {
+      if (slot.counts.size() < n) slot.counts.resize(n);
+      transfer_queue_.enqueueReadBuffer(slot.counters, CL_FALSE, 0, n * sizeof(clrt_ray_counts), slot.counts.data(),
+                                        &after, &ev);
+      tile.reads.push_back(ev);
+    }
+    transfer_queue_.flush();
+  }
+  queue_.flush();
+  pending_.push_back(std::move(tile));
+}
+
+LaunchTime DeviceRenderer::finish_tile(Image& dst) {
+  if (pending_.empty()) throw std::logic_error("finish_tile: no tile in flight");
+  try {
+    const PendingTile& tile = pending_.front();
+    const LaunchTime time = finish_timed(tile.launch);
+    events_plausible_ = events_plausible_ && time.from_events;
+    const auto t0 = Clock::now();
+    if (!tile.reads.empty()) cl::Event::waitForEvents(tile.reads);
+    store_tile(tile, dst);
+    timings_.download_ms += ms_since(t0);
+    pending_.erase(pending_.begin());
+    return time;
+  } catch (...) {
+    drain();  // no read may land in memory after the error has unwound
+    throw;
+  }
+}
+
+void DeviceRenderer::store_tile(const PendingTile& tile, Image& dst) {
+  const int x0 = tile.x0, y0 = tile.y0, w = tile.w, h = tile.h;
+  const size_t n = size_t(w) * h;
+  ResultSlot& slot = slots_[tile.slot];
+  const bool rgba8 = config_.output.pixels == PixelFormat::Rgba8, classes = config_.output.classes;
+  const void* colour = nullptr;
   const cl_int* aux = nullptr;
+  const clrt_ray_counts* counts = nullptr;
+  void* mapped_colour = nullptr;
+  void* mapped_aux = nullptr;
   if (map_results_) {
-    rgb = static_cast<const float*>(queue_.enqueueMapBuffer(colors_, CL_TRUE, CL_MAP_READ, 0, n * 3 * sizeof(float)));
-    aux =
-        static_cast<const cl_int*>(queue_.enqueueMapBuffer(classes_, CL_TRUE, CL_MAP_READ, 0, n * 2 * sizeof(cl_int)));
+    mapped_colour = queue_.enqueueMapBuffer(slot.colors, CL_TRUE, CL_MAP_READ, 0, n * colour_bytes_per_pixel());
+    colour = mapped_colour;
+    if (classes) {
+      mapped_aux = queue_.enqueueMapBuffer(slot.classes, CL_TRUE, CL_MAP_READ, 0, n * 2 * sizeof(cl_int));
+      aux = static_cast<const cl_int*>(mapped_aux);
+    }
+    if (config_.count_rays) {
+      if (slot.counts.size() < n) slot.counts.resize(n);
+      queue_.enqueueReadBuffer(slot.counters, CL_TRUE, 0, n * sizeof(clrt_ray_counts), slot.counts.data());
+      counts = slot.counts.data();
+    }
   } else {
-    if (staging_rgb_.size() < n * 3) staging_rgb_.resize(n * 3);
-    if (staging_aux_.size() < n * 2) staging_aux_.resize(n * 2);
-    queue_.enqueueReadBuffer(colors_, CL_TRUE, 0, n * 3 * sizeof(float), staging_rgb_.data());
-    queue_.enqueueReadBuffer(classes_, CL_TRUE, 0, n * 2 * sizeof(cl_int), staging_aux_.data());
-    rgb = staging_rgb_.data();
-    aux = staging_aux_.data();
+    if (!tile.colour_in_place) colour = rgba8 ? static_cast<const void*>(slot.rgba8.data()) : slot.rgb.data();
+    if (classes) aux = slot.aux.data();
+    if (config_.count_rays) counts = slot.counts.data();
   }
-  if (config_.count_rays) {
-    std::vector<clrt_ray_counts> rc(n);
-    queue_.enqueueReadBuffer(ray_counters_, CL_TRUE, 0, rc.size() * sizeof(clrt_ray_counts), rc.data());
-    for (const auto& c : rc)  // the kernel counts in 32-bit words; they wrap past 2^31 as unsigned
-      counts_ += RayCounts{uint32_t(c.primary), uint32_t(c.shadow), uint32_t(c.reflection), uint32_t(c.sphere_tests)};
+  if (counts)
+    for (size_t i = 0; i < n; ++i)  // the kernel counts in 32-bit words; they wrap past 2^31 as unsigned
+      counts_ += RayCounts{uint32_t(counts[i].primary), uint32_t(counts[i].shadow), uint32_t(counts[i].reflection),
+                           uint32_t(counts[i].sphere_tests)};
+  if (colour && rgba8) {
+    const auto* bytes = static_cast<const uint8_t*>(colour);
+    if (x0 == 0 && w == dst.width)  // a band of whole rows: one contiguous run of the image
+      std::memcpy(&dst.rgba8[size_t(y0) * dst.width * 4], bytes, n * 4);
+    else
+      for (int ty = 0; ty < h; ++ty)
+        std::memcpy(&dst.rgba8[(size_t(y0 + ty) * dst.width + x0) * 4], bytes + size_t(ty) * w * 4, size_t(w) * 4);
+  } else if (colour) {
+    const auto* rgb = static_cast<const float*>(colour);
+    for (int ty = 0; ty < h; ++ty) {
+      double* d = &dst.rgb[(size_t(y0 + ty) * dst.width + x0) * 3];
+      const float* s = rgb + size_t(ty) * w * 3;
+      for (size_t i = 0; i < size_t(w) * 3; ++i) d[i] = s[i];
+    }
   }
-  for (int ty = 0; ty < h; ++ty) {
-    for (int tx = 0; tx < w; ++tx) {
-      size_t s = size_t(ty) * w + tx;
-      size_t d = size_t(y0 + ty) * dst.width + (x0 + tx);
-      for (int c = 0; c < 3; ++c) dst.rgb[d * 3 + c] = rgb[s * 3 + c];
-      dst.hit[d] = aux[s * 2];
-      dst.shadowed[d] = aux[s * 2 + 1];
+  if (aux) {
+    for (int ty = 0; ty < h; ++ty) {
+      const size_t d = size_t(y0 + ty) * dst.width + x0;
+      const cl_int* s = aux + size_t(ty) * w * 2;
+      for (int tx = 0; tx < w; ++tx) {
+        dst.hit[d + tx] = s[tx * 2];
+        dst.shadowed[d + tx] = s[tx * 2 + 1];
+      }
     }
   }
   if (map_results_) {
-    queue_.enqueueUnmapMemObject(colors_, const_cast<float*>(rgb));
-    queue_.enqueueUnmapMemObject(classes_, const_cast<cl_int*>(aux));
+    queue_.enqueueUnmapMemObject(slot.colors, mapped_colour);
+    if (mapped_aux) queue_.enqueueUnmapMemObject(slot.classes, mapped_aux);
     queue_.finish();  // (the next tile's kernel writes them again)
   }
-  timings_.download_ms += ms_since(t0);
-  return time;
 }
 
 void DeviceRenderer::begin_frame() {
+  if (!pending_.empty()) drain();  // tiles of an abandoned frame
   counts_ = {};
   timings_.download_ms = 0;
 }

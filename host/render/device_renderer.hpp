@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "cl/cl.hpp"
 #include "cl/device.hpp"
@@ -43,8 +44,14 @@ struct DeviceTimings {
 class DeviceRenderer {
  public:
   // map_results: map the result buffers where the device has host unified
-  // memory (else they are read into staging vectors).
-  DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local = {}, bool map_results = true);
+  // memory (else they are read into staging vectors); overlap: where they
+  // are read, let two tiles be in flight (tiles_in_flight()).
+  DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local = {}, bool map_results = true,
+                 bool overlap = true);
+  // Waits for tiles still in flight (their reads write into this object).
+  ~DeviceRenderer();
+  DeviceRenderer(const DeviceRenderer&) = delete;
+  DeviceRenderer& operator=(const DeviceRenderer&) = delete;
 
   // Builds the (scene-specialized) program and uploads the scene, and its
   // hierarchy when the configuration uses one (`bvh`: build_bvh(scene), made
@@ -55,10 +62,27 @@ class DeviceRenderer {
 
   // Resets the ray counts and download time of a frame.
   void begin_frame();
-  // Renders the tile [x0, x0+w) x [y0, y0+h) into `dst` (a full-size image).
-  // Returns the launch's kernel time (profiling event, or the host wall time
-  // where the event is implausible: launch_timing.hpp).
+  // Renders the tile [x0, x0+w) x [y0, y0+h) into `dst` (a full-size image
+  // of the configured contents). Returns the launch's kernel time (profiling
+  // event, or the host wall time where the event is implausible:
+  // launch_timing.hpp). The same as submit_tile() then finish_tile().
   LaunchTime render_tile(int x0, int y0, int w, int h, Image& dst);
+
+  // The same in two steps, so that one tile's results travel and are
+  // converted while the next tile's kernel runs: submit_tile() enqueues the
+  // kernel and, where results are read, their read (on a second queue),
+  // without waiting; finish_tile() waits for the oldest submitted tile and
+  // stores it into `dst`. At most tiles_in_flight() tiles may be submitted
+  // and not finished; `dst` must stay the same image until they are.
+  void submit_tile(int x0, int y0, int w, int h, Image& dst);
+  LaunchTime finish_tile(Image& dst);
+  // 2 where results are read over a bus (discrete devices), unless overlap
+  // was turned off; 1 where they are
+  // mapped (the device works in host memory: there is no transfer to hide,
+  // and the host's copy would take cores from the kernel) and once a launch's
+  // profiling events proved implausible (the host clock that then times
+  // launches would count the overlap).
+  int tiles_in_flight() const { return map_results_ || !overlap_ || !events_plausible_ ? 1 : 2; }
 
   const DeviceTimings& timings() const { return timings_; }
   const RayCounts& ray_counts() const { return counts_; }
@@ -68,7 +92,33 @@ class DeviceRenderer {
   int height() const { return height_; }
 
  private:
-  void ensure_tile_buffers(size_t pixels);
+  // The result buffers of one tile in flight, and the host memory its
+  // results are read into (kept from tile to tile: no new pages per tile).
+  struct ResultSlot {
+    cl::Buffer colors, classes, counters;
+    size_t capacity = 0;  // pixels
+    std::vector<float> rgb;
+    std::vector<uint8_t> rgba8;
+    std::vector<cl_int> aux;
+    std::vector<clrt_ray_counts> counts;
+  };
+  // A submitted tile.
+  struct PendingTile {
+    int x0 = 0, y0 = 0, w = 0, h = 0, slot = 0;
+    TimedLaunch launch;
+    std::vector<cl::Event> reads;  // read path: the reads of its results
+    bool colour_in_place = false;  // read path: 8-bit rows read straight into the image
+  };
+
+  void ensure_slot(ResultSlot& slot, size_t pixels);
+  // submit_tile() without the cleanup after an error.
+  void enqueue_tile(int x0, int y0, int w, int h, Image& dst);
+  // Bytes of colour the kernel writes per pixel (config_.output).
+  size_t colour_bytes_per_pixel() const;
+  // Stores a finished tile's results (mapped or read into its slot) into `dst`.
+  void store_tile(const PendingTile& tile, Image& dst);
+  // Waits for every enqueued command (after an error, and before the slots die).
+  void drain() noexcept;
   // UserError when the local size does not fit the device and kernel.
   void check_local_size() const;
 
@@ -78,14 +128,17 @@ class DeviceRenderer {
   LocalSize local_;
   cl::Context context_;
   cl::CommandQueue queue_;
+  cl::CommandQueue transfer_queue_;  // read path: results read here while the next kernel runs
   cl::Program program_;
   cl::Kernel kernel_;
   std::string options_, source_;
-  cl::Buffer params_, spheres_, lights_, colors_, classes_, ray_counters_, nodes_, primitives_;
-  size_t tile_capacity_ = 0;
-  bool map_results_ = false;        // asked for and CL_DEVICE_HOST_UNIFIED_MEMORY: mapped, not read
-  std::vector<float> staging_rgb_;  // otherwise read here (kept from tile to tile)
-  std::vector<cl_int> staging_aux_;
+  cl::Buffer params_, spheres_, lights_, nodes_, primitives_;
+  bool map_results_ = false;  // asked for and CL_DEVICE_HOST_UNIFIED_MEMORY: mapped, not read
+  bool overlap_ = true;
+  bool events_plausible_ = true;
+  ResultSlot slots_[2];
+  std::vector<PendingTile> pending_;  // oldest first
+  int next_slot_ = 0;
   int width_ = 0, height_ = 0;
   int default_local_x_ = 1;    // set when the kernel is built
   size_t max_work_group_ = 1;  // CL_KERNEL_WORK_GROUP_SIZE of the built kernel

@@ -15,7 +15,8 @@ namespace clrt {
 Renderer::Renderer(const std::vector<DeviceInfo>& devices, const RenderSettings& settings) : settings_(settings) {
   if (devices.empty()) throw std::logic_error("Renderer without devices");
   for (const auto& d : devices)
-    devices_.push_back(std::make_unique<DeviceRenderer>(d, settings.kernel, settings.local, settings.map_results));
+    devices_.push_back(std::make_unique<DeviceRenderer>(d, settings.kernel, settings.local, settings.map_results,
+                                                        settings.overlap_downloads));
 }
 
 std::string Renderer::device_names() const {
@@ -88,9 +89,7 @@ void Renderer::render_into(Image& img) {
   // Every device was prepared with the same scene and size; the bands cover
   // every pixel, so a reused image needs no clearing.
   const int width = devices_.front()->width(), height = devices_.front()->height();
-  if (img.width != width || img.height != height || img.rgb.size() != size_t(width) * height * 3 ||
-      img.hit.size() != size_t(width) * height || img.shadowed.size() != size_t(width) * height)
-    img = Image(width, height);
+  if (!img.holds(width, height, settings_.kernel.output)) img = Image(width, height, settings_.kernel.output);
   stats_.shares = render_bands(workers, img, settings_.tiles);
   stats_.wall_ms = ms_since(t0);
   stats_.kernel_ms = stats_.download_ms = 0;

@@ -25,6 +25,9 @@ struct RenderSettings {
   // Map the results where the device works in host memory instead of reading
   // them into a copy (false: always read; tests compare both paths).
   bool map_results = true;
+  // Where results are read (not mapped), read one band's while the next
+  // band's kernel runs (false: one band at a time; bench compares both).
+  bool overlap_downloads = true;
 };
 
 // The last prepare() and render(), over every device.

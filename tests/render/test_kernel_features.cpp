@@ -157,11 +157,12 @@ TEST_CASE("features become one -D list, joined for the build and the cache key",
   const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
   const KernelFeatures f = kernel_features(demo, 3);
   KernelConfig cfg;  // robust, specialized, lanes not yet resolved by a device: 8
-  const std::vector<std::string> expected = {
-      "-cl-std=CL1.2",        "-DCLRT_PRECISION=2",       "-cl-denorms-are-zero",    "-DCLRT_LANES=8",
-      "-DCLRT_PACKET_ROWS=2", "-DCLRT_SPECIALIZED",       "-DCLRT_DEPTH=3",          "-DCLRT_HAS_AMBIENT=1",
-      "-DCLRT_HAS_POINT=1",   "-DCLRT_HAS_DIRECTIONAL=1", "-DCLRT_HAS_SPECULAR=1",   "-DCLRT_HAS_REFLECTIVE=1",
-      "-DCLRT_N_SPHERES=4",   "-DCLRT_N_LIGHTS=3",        "-DCLRT_LIGHT_TYPES=0,1,2"};
+  std::vector<std::string> expected = {
+      "-cl-std=CL1.2",      "-DCLRT_PRECISION=2",       "-cl-denorms-are-zero",    "-DCLRT_OUT_CLASSES",
+      "-DCLRT_LANES=8",     "-DCLRT_PACKET_ROWS=2",     "-DCLRT_SPECIALIZED",      "-DCLRT_HAS_AMBIENT=1",
+      "-DCLRT_HAS_POINT=1", "-DCLRT_HAS_DIRECTIONAL=1", "-DCLRT_HAS_SPECULAR=1",   "-DCLRT_HAS_REFLECTIVE=1",
+      "-DCLRT_N_SPHERES=4", "-DCLRT_N_LIGHTS=3",        "-DCLRT_LIGHT_TYPES=0,1,2"};
+  expected.push_back("-DCLRT_COMPENSATED_FLAGS=0,0,0,1");  // only the floor is compensated (test_conditioning.cpp)
   CHECK(build_option_list(cfg, f, false) == expected);
   // The old entry point is the composition of the two steps.
   CHECK(build_options(cfg, demo, 3, false) == join_build_options(expected));
@@ -171,7 +172,18 @@ TEST_CASE("features become one -D list, joined for the build and the cache key",
   SECTION("generic: no scene options, one lane") {
     KernelConfig generic;
     generic.specialize = false;
-    CHECK(build_option_list(generic, f, false) ==
+    CHECK(build_option_list(generic, f, false) == std::vector<std::string>{"-cl-std=CL1.2", "-DCLRT_PRECISION=2",
+                                                                           "-cl-denorms-are-zero",
+                                                                           "-DCLRT_OUT_CLASSES"});
+  }
+  SECTION("the frame's contents: 8-bit colour and classes only when asked for") {
+    KernelConfig c;
+    c.specialize = false;
+    c.output = {PixelFormat::Rgba8, false};
+    CHECK(build_option_list(c, f, false) ==
+          std::vector<std::string>{"-cl-std=CL1.2", "-DCLRT_PRECISION=2", "-cl-denorms-are-zero", "-DCLRT_OUT_RGBA8"});
+    c.output = {PixelFormat::Float, false};
+    CHECK(build_option_list(c, f, false) ==
           std::vector<std::string>{"-cl-std=CL1.2", "-DCLRT_PRECISION=2", "-cl-denorms-are-zero"});
   }
   SECTION("configuration options, in order, extra options verbatim last") {
@@ -182,10 +194,10 @@ TEST_CASE("features become one -D list, joined for the build and the cache key",
     c.lanes = 16;
     c.specialize = false;
     c.extra_options = "-DCLRT_LIB_POW -DCLRT_SHADOW_ALL_SPHERES";
-    CHECK(build_option_list(c, f, false) == std::vector<std::string>{"-cl-std=CL1.2", "-DCLRT_PRECISION=3",
-                                                                     "-cl-fast-relaxed-math", "-DCLRT_COUNT_RAYS",
-                                                                     "-DCLRT_LANES=16", "-DCLRT_PACKET_ROWS=4",
-                                                                     "-DCLRT_LIB_POW -DCLRT_SHADOW_ALL_SPHERES"});
+    CHECK(build_option_list(c, f, false) ==
+          std::vector<std::string>{"-cl-std=CL1.2", "-DCLRT_PRECISION=3", "-cl-fast-relaxed-math", "-DCLRT_COUNT_RAYS",
+                                   "-DCLRT_OUT_CLASSES", "-DCLRT_LANES=16", "-DCLRT_PACKET_ROWS=4",
+                                   "-DCLRT_LIB_POW -DCLRT_SHADOW_ALL_SPHERES"});
   }
   SECTION("every precision passes its CLRT_PRECISION code") {
     static_assert(kernel_code(Precision::Naive) == CLRT_PRECISION_NAIVE);
@@ -203,13 +215,17 @@ TEST_CASE("features become one -D list, joined for the build and the cache key",
     Scene matte = demo;
     for (auto& s : matte.spheres) s.reflective = 0;
     const auto options = build_option_list(cfg, kernel_features(matte, 5), false);
-    CHECK(has(options, "-DCLRT_DEPTH=0"));
     CHECK(has(options, "-DCLRT_HAS_REFLECTIVE=0"));
   }
   SECTION("depth 0: reflective spheres, but no reflection rays") {
     const auto options = build_option_list(cfg, kernel_features(demo, 0), false);
-    CHECK(has(options, "-DCLRT_DEPTH=0"));
     CHECK(has(options, "-DCLRT_HAS_REFLECTIVE=0"));
+  }
+  SECTION("the depth is not compiled in: one program serves every depth that reflects") {
+    const auto at1 = build_option_list(cfg, kernel_features(demo, 1), false);
+    CHECK(at1 == build_option_list(cfg, kernel_features(demo, 3), false));
+    CHECK(at1 == build_option_list(cfg, kernel_features(demo, CLRT_MAX_DEPTH), false));
+    for (const auto& option : at1) CHECK(option.rfind("-DCLRT_DEPTH", 0) != 0);
   }
   SECTION("past the unroll bound: the other specializations stay") {
     Scene big = demo;

@@ -63,6 +63,25 @@ TEST_CASE("specialized and generic kernels give identical images on every scene"
   }
 }
 
+TEST_CASE("one specialized program serves every depth that reflects", "[opencl][specialize]") {
+  // The depth is read at run time: preparing another depth rebuilds nothing
+  // and renders what a fresh generic renderer at that depth renders.
+  DeviceInfo dev = clrt_test::test_device();
+  const Scene s = clrt_test::load("scenes/cgfs-demo.json");
+  KernelConfig generic;
+  generic.specialize = false;
+  Renderer r({dev}, RenderSettings{KernelConfig{}, {}, {}});
+  r.prepare(s, kW, kH, 1);
+  const std::string options = r.options();
+  for (int depth : {4, 2, 1, 7, 3}) {
+    INFO("depth " << depth);
+    r.prepare(s, kW, kH, depth);
+    CHECK(r.options() == options);
+    CHECK(r.stats().build_ms == 0);  // the program of the first prepare()
+    require_identical(r.render(), render_with(dev, generic, s, kW, kH, depth));
+  }
+}
+
 TEST_CASE("every precision and lane count gives the generic kernel's image", "[opencl][specialize]") {
   DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
