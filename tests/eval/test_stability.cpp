@@ -118,7 +118,8 @@ TEST_CASE("clrt stability --json reports every case x variant and the summary", 
   CHECK(j["results"][0]["variant"] == "naive");
 }
 
-TEST_CASE("robust: every case gives the generic kernel's image when specialized", "[stability][opencl][specialize]") {
+TEST_CASE("robust: every case gives the generic kernel's image when specialized",
+          "[stability][opencl][specialize][per-case-builds]") {
   // The suite runs the generic kernel, which decides per sphere at run time
   // between compensated and cheap arithmetic (clrt_sphere.compensated). A
   // specialized build compiles out the path no sphere of the scene takes
