@@ -76,6 +76,11 @@
 #define CLRT_STACK_FRAMES (CLRT_DEPTH_BOUND + 1)
 #endif
 
+/* Supersampling: N x N samples per pixel (clrt_params.spp), always read at
+ * run time, so one program serves every N; clamped to [1, CLRT_MAX_SPP]
+ * (the host validates it). */
+#define CLRT_SAMPLES_PER_AXIS(params) (clamp((params)->spp, 1, CLRT_MAX_SPP))
+
 /* The generic build has every feature; a specialized one gets each from the
  * host (0 or 1). */
 #ifndef CLRT_SPECIALIZED

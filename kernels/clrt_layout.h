@@ -38,6 +38,10 @@ typedef std::int32_t clrt_i32;
  * The generic kernel's explicit stack has CLRT_MAX_DEPTH + 1 frames. */
 #define CLRT_MAX_DEPTH 64
 
+/* Largest supersampling rate accepted anywhere (--spp N: N x N samples per
+ * pixel; clrt_params.spp). */
+#define CLRT_MAX_SPP 16
+
 typedef struct clrt_sphere {
   clrt_f32 center[3];    /* hi parts */
   clrt_f32 radius;       /* hi part */
@@ -65,7 +69,7 @@ typedef struct clrt_params {
   clrt_i32 depth; /* recursion depth (generic kernel) */
   clrt_i32 n_spheres;
   clrt_i32 n_lights;
-  clrt_i32 pad0;
+  clrt_i32 spp; /* N: N x N samples per pixel, averaged (1 = one ray through the centre) */
   clrt_f32 viewport[2];
   clrt_f32 proj_d;
   clrt_f32 epsilon;
@@ -134,7 +138,7 @@ typedef struct clrt_bvh_node {
   FIELD(clrt_params, depth)            \
   FIELD(clrt_params, n_spheres)        \
   FIELD(clrt_params, n_lights)         \
-  FIELD(clrt_params, pad0)             \
+  FIELD(clrt_params, spp)              \
   FIELD(clrt_params, viewport)         \
   FIELD(clrt_params, proj_d)           \
   FIELD(clrt_params, epsilon)          \

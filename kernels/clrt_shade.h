@@ -54,10 +54,11 @@ CLRT_INLINE void hit_material(lint hit, __global const clrt_params* params, __gl
 /* The book's ComputeLighting, per lane, at the hit point Pt of sphere `hit`
  * with normal N, seen along V (= -D), for the lanes of `alive`: ambient
  * light, plus diffuse and specular terms of every point and directional
- * light that no sphere blocks (a shadow ray from Pt). At bounce 0 the lights
+ * light that no sphere blocks (a shadow ray from Pt). Where `classify` is
+ * set (the primary ray of a pixel's first sample, trace.cl) the lights
  * blocked in a lane set its bits of *shadow_mask (the first 32 lights). */
 CLRT_INLINE lreal compute_lighting(const vec3* point, const vec3* normal, const vec3* view, lreal specular, lint hit,
-                                   lint alive, real epsilon, int bounce, __global const clrt_params* params,
+                                   lint alive, real epsilon, int classify, __global const clrt_params* params,
                                    __global const clrt_sphere* spheres, __global const clrt_light* lights,
                                    __global const clrt_bvh_node* nodes, __global const int* primitives,
                                    lint* shadow_mask, lane_ray_counts* counts) {
@@ -99,7 +100,7 @@ CLRT_INLINE lreal compute_lighting(const vec3* point, const vec3* normal, const 
     const lint blocked =
         any_intersection(&Pt, &L, epsilon, tmax, hit, alive, params, spheres, nodes, primitives, &tests);
     COUNT_IN_LANES(counts->sphere_tests, alive, tests);
-    if (bounce == 0 && light_index < 32) *shadow_mask |= (blocked & alive) ? (lint)(int)(1u << light_index) : (lint)0;
+    if (classify && light_index < 32) *shadow_mask |= (blocked & alive) ? (lint)(int)(1u << light_index) : (lint)0;
     const lint lit = alive & !blocked;
     const lreal n_dot_l = vdot(N, L);
     intensity =

@@ -1,6 +1,7 @@
 // test_util.hpp - shared helpers for the test suite.
 #pragma once
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -50,6 +51,38 @@ inline std::vector<std::string> shipped_scenes(const std::string& folder = "scen
     if (e.path().extension() == ".json") out.push_back(e.path().string());
   std::sort(out.begin(), out.end());
   return out;
+}
+
+// The camera inside a reflective sphere of radius 100, so every ray hits it
+// (depth + 1 hits per camera ray); a second sphere far away is never hit
+// but always tested; an ambient, a point and a directional light (2 shadow
+// rays per hit). The ray-counter tests derive their counts from it.
+inline clrt::Scene camera_inside_sphere() {
+  return clrt::parse_scene(
+      R"({"spheres": [{"center": [0, 0, 0], "radius": 100, "color": [9, 9, 9], "reflective": 0.5, "specular": 10},
+                      {"center": [0, 0, 1000], "radius": 1, "color": [9, 9, 9]}],
+          "lights": [{"type": "ambient", "intensity": 0.2},
+                     {"type": "point", "intensity": 0.5, "position": [0, 0, 0]},
+                     {"type": "directional", "intensity": 0.3, "direction": [1, 1, 1]}]})",
+      "inside");
+}
+
+// Byte-identical frames: the same float (exactly representable in the double
+// Image), the same hit sphere and the same shadow bits in every pixel.
+inline void require_identical(const clrt::Image& a, const clrt::Image& b) {
+  REQUIRE(a.width == b.width);
+  REQUIRE(a.height == b.height);
+  REQUIRE(a.rgb.size() == b.rgb.size());
+  REQUIRE(a.hit.size() == b.hit.size());
+  size_t rgb_diff = 0, hit_diff = 0, shadow_diff = 0;
+  for (size_t i = 0; i < a.rgb.size(); ++i) rgb_diff += a.rgb[i] != b.rgb[i];
+  for (size_t i = 0; i < a.hit.size(); ++i) {
+    hit_diff += a.hit[i] != b.hit[i];
+    shadow_diff += a.shadowed[i] != b.shadowed[i];
+  }
+  CHECK(rgb_diff == 0);
+  CHECK(hit_diff == 0);
+  CHECK(shadow_diff == 0);
 }
 
 }  // namespace clrt_test

@@ -100,7 +100,8 @@ std::string accuracy_markdown(const std::vector<AccuracyRow>& rows) {
 }
 
 std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySettings& s, const std::string& device) {
-  nlohmann::json out = {{"device", device}, {"width", s.width}, {"height", s.height}, {"repeat", s.repeat}};
+  nlohmann::json out = {
+      {"device", device}, {"width", s.width}, {"height", s.height}, {"spp", s.spp}, {"repeat", s.repeat}};
   nlohmann::json arr = nlohmann::json::array();
   for (const auto& r : rows) {
     nlohmann::json j = {{"scene", r.scene}, {"variant", r.variant}, {"depth", r.depth}, {"supported", r.supported}};

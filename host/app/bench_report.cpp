@@ -31,6 +31,7 @@ nlohmann::json bench_json(const BenchResult& r) {
       {"pixels", r.rgba8 ? "rgba8" : "float"},
       {"height", r.height},
       {"depth", r.depth},
+      {"spp", r.spp},
       {"repeat", r.repeat},
       {"build_cold", stats_json(r.build_cold)},
       {"build_cold_ms", r.build_cold.median},
@@ -94,8 +95,8 @@ nlohmann::json bench_json(const BenchResult& r) {
 void print_bench(const BenchResult& r) {
   const std::string source = time_source_note(r.host_timed_launches, r.launches);
   std::printf("device         %s\n", r.device.c_str());
-  std::printf("image          %dx%d, depth %d, %s, %d timed rounds after a warm-up\n", r.width, r.height, r.depth,
-              r.rgba8 ? "8-bit RGBA frames" : "float RGB frames", r.repeat);
+  std::printf("image          %dx%d, depth %d, %dx%d samples per pixel, %s, %d timed rounds after a warm-up\n", r.width,
+              r.height, r.depth, r.spp, r.spp, r.rgba8 ? "8-bit RGBA frames" : "float RGB frames", r.repeat);
   std::printf("options        %s\n", r.options.c_str());
   std::printf("build cold     %s (no program cache)\n", format_stats(r.build_cold, "ms", 1).c_str());
   std::printf("build warm     %s%s\n", format_stats(r.build_warm, "ms", 1).c_str(),
@@ -138,6 +139,8 @@ void print_bench(const BenchResult& r) {
   if (r.reference.n > 0)
     std::printf("reference      %s (scalar double, 1 thread): speedup %.2fx (reference / clrt frame)\n",
                 format_stats(r.reference, "ms", 1).c_str(), r.speedup_vs_reference);
+  if (r.spp > 1)
+    std::printf("OpenMP/Embree  not run: they trace one ray per pixel (--spp %d traces %d)\n", r.spp, r.spp * r.spp);
   if (r.omp.n > 0) {
     std::printf("OpenMP float   %s (%d threads, -O3 -march=native)\n", format_stats(r.omp).c_str(), r.omp_threads);
     std::printf("speedup        %s (OpenMP frame / clrt frame, per round; > 1: clrt is faster)\n",

@@ -60,6 +60,7 @@ void add_accuracy_command(CLI::App& app) {
     s.width = o->image.width;
     s.height = o->image.height;
     s.depth = o->image.depth;
+    s.spp = o->image.spp;
     s.repeat = o->repeat;
     s.base = o->kernel.config();
     s.variants = parse_variants(o->variants);
@@ -77,8 +78,8 @@ void add_accuracy_command(CLI::App& app) {
       std::printf("%s\n", accuracy_json(rows, s, device).c_str());
       return;
     }
-    std::printf("device %s, %dx%d, kernel time = median of %d runs after a warm-up\n", device.c_str(), s.width,
-                s.height, s.repeat);
+    std::printf("device %s, %dx%d, %dx%d samples per pixel, kernel time = median of %d runs after a warm-up\n",
+                device.c_str(), s.width, s.height, s.spp, s.spp, s.repeat);
     std::printf("%s", o->markdown ? accuracy_markdown(rows).c_str() : accuracy_table(rows).c_str());
   });
 }

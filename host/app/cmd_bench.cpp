@@ -46,6 +46,7 @@ void add_bench_command(CLI::App& app) {
     s.width = o->image.width;
     s.height = o->image.height;
     s.depth = o->image.effective_depth(scene);
+    s.spp = o->image.spp;
     s.repeat = *repeat;
     s.omp = !*no_omp;
     s.embree = !*no_embree;

@@ -63,6 +63,7 @@ void add_compare_command(CLI::App& app) {
                           {"width", o->image.width},
                           {"height", o->image.height},
                           {"depth", depth},
+                          {"spp", o->image.spp},
                           {"reference_ms", ref_run.wall_ms},
                           {"worst_pixel",
                            {{"x", c.worst_x},
@@ -89,8 +90,8 @@ void add_compare_command(CLI::App& app) {
       }
       std::printf("%s\n", json_text(j).c_str());
     } else {
-      std::printf("scene          %s  %dx%d  depth %d  precision %s\n", o->scene_path.c_str(), o->image.width,
-                  o->image.height, depth, classified ? o->kernel.precision.c_str() : "-");
+      std::printf("scene          %s  %dx%d  depth %d  spp %d  precision %s\n", o->scene_path.c_str(), o->image.width,
+                  o->image.height, depth, o->image.spp, classified ? o->kernel.precision.c_str() : "-");
       if (classified)
         std::printf("device         %s\n", cl_run.device.c_str());
       else

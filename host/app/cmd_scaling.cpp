@@ -64,7 +64,7 @@ void add_scaling_command(CLI::App& app) {
   cmd->add_option("--seed", settings->seed, "Seed of the scenes (default 5)");
   cmd->add_option("--fill", settings->fill, "Fraction of the volume the spheres fill (default 0.05)")
       ->check(CLI::Range(1e-6, 1.0));
-  image->add(cmd);
+  image->add(cmd, /*with_depth=*/true, /*with_spp=*/false);  // beside Embree: one ray per pixel
   device->add(cmd, /*several=*/true);
   kernel->add(cmd, /*with_variant=*/true);
   launch->add(cmd);

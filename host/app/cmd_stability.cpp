@@ -21,7 +21,7 @@ void add_stability_command(CLI::App& app) {
   };
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand("stability", "Run the generated stiff/extreme suite on every precision variant");
-  o->image.add(cmd, /*with_depth=*/false);  // each case has its own depth
+  o->image.add(cmd, /*with_depth=*/false, /*with_spp=*/false);  // each case has its own depth, one ray per pixel
   o->device.add(cmd, /*several=*/false);
   o->kernel.add(cmd, /*with_variant=*/false, /*with_specialize=*/false);  // the suite runs every variant, generic
   cmd->add_flag("--json", o->json, "Print one JSON object");

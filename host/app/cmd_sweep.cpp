@@ -44,6 +44,7 @@ void add_sweep_command(CLI::App& app) {
     Scene scene = load_scene(o->scene_path);
     s.bench.width = o->image.width;
     s.bench.height = o->image.height;
+    s.bench.spp = o->image.spp;
     s.bench.repeat = *repeat;
     s.bench.omp = *omp;
     s.bench.embree = false;  // (bench's comparison; the sweep reports OpenMP only)

@@ -9,12 +9,17 @@
 
 namespace clrt {
 
-void ImageOptions::add(CLI::App* cmd, bool with_depth) {
+void ImageOptions::add(CLI::App* cmd, bool with_depth, bool with_spp) {
   cmd->add_option("--width", width, "Image width in pixels (default " + std::to_string(width) + ")");
   cmd->add_option("--height", height, "Image height in pixels (default " + std::to_string(height) + ")");
   if (with_depth)
     cmd->add_option("--depth", depth, "Recursion depth (default: the scene's recursion_depth)")
         ->check(CLI::Range(0, CLRT_MAX_DEPTH));
+  if (with_spp)
+    cmd->add_option("--spp", spp,
+                    "Supersampling: N x N stratified rays per pixel, averaged (1 to " + std::to_string(CLRT_MAX_SPP) +
+                        ", default 1)")
+        ->check(CLI::Range(1, CLRT_MAX_SPP));
 }
 
 void ImageOptions::validate() const {
@@ -26,6 +31,8 @@ void ImageOptions::validate() const {
   if (depth != kSceneDepth && (depth < 0 || depth > CLRT_MAX_DEPTH))
     throw UserError("--depth must be in [0, " + std::to_string(CLRT_MAX_DEPTH) + "] (got " + std::to_string(depth) +
                     ")");
+  if (spp < 1 || spp > CLRT_MAX_SPP)
+    throw UserError("--spp must be in [1, " + std::to_string(CLRT_MAX_SPP) + "] (got " + std::to_string(spp) + ")");
 }
 
 void DeviceOptions::add(CLI::App* cmd, bool several) {

@@ -16,15 +16,18 @@ namespace clrt {
 constexpr int kMaxImageEdge = 16384;
 constexpr long long kMaxImagePixels = 64LL * 1024 * 1024;
 
-// --width, --height and (optionally) --depth.
+// --width, --height and (optionally) --depth and --spp.
 struct ImageOptions {
   int width = 600, height = 600;
   // --depth accepts only [0, CLRT_MAX_DEPTH]; without it the scene's
   // recursion_depth is used (kSceneDepth is never a user value).
   static constexpr int kSceneDepth = -1;
   int depth = kSceneDepth;
+  // --spp N: N x N samples per pixel, averaged (supersampling), in
+  // [1, CLRT_MAX_SPP]; 1 = one ray per pixel, the book's image.
+  int spp = 1;
 
-  void add(CLI::App* cmd, bool with_depth = true);
+  void add(CLI::App* cmd, bool with_depth = true, bool with_spp = true);
   void validate() const;
   int effective_depth(const Scene& s) const { return depth == kSceneDepth ? s.recursion_depth : depth; }
 };

@@ -64,7 +64,11 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   r.width = s.width;
   r.height = s.height;
   r.depth = s.depth;
+  r.spp = s.spp;
   r.repeat = s.repeat;
+  // The OpenMP and Embree tracers trace one ray per pixel: at spp > 1 their
+  // frames would not be the same image, so they are not run.
+  const bool tracers = s.spp == 1;
   const int build_repeat = std::min(r.repeat, kMaxBuildRepeat);
 
   std::vector<double> cold, warm, uploads;
@@ -75,7 +79,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
     no_cache.kernel.use_cache = false;
     for (int i = 0; i < build_repeat; ++i) {
       Renderer c(devs, no_cache);
-      c.prepare(scene, s.width, s.height, s.depth);
+      c.prepare(scene, s.width, s.height, s.depth, s.spp);
       cold.push_back(c.stats().build_ms);
     }
     // Make sure the entry exists, then time loads from the cache.
@@ -83,7 +87,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
       r.build_warm_cached = true;
       for (int i = 0; i <= build_repeat; ++i) {
         Renderer c(devs, settings);
-        c.prepare(scene, s.width, s.height, s.depth);
+        c.prepare(scene, s.width, s.height, s.depth, s.spp);
         if (i == 0) continue;  // the one that stores the entry
         warm.push_back(c.stats().build_ms);
         uploads.push_back(c.stats().upload_ms);
@@ -95,7 +99,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   // End to end on a fresh renderer: (warm) build + upload + first frame.
   const auto t0 = Clock::now();
   Renderer cl(devs, settings);
-  cl.prepare(scene, s.width, s.height, s.depth);
+  cl.prepare(scene, s.width, s.height, s.depth, s.spp);
   r.options = cl.options();
   if (warm.empty()) {
     warm.push_back(cl.stats().build_ms);
@@ -132,8 +136,8 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
     return rgba8 ? clrt_bench::embree_render(scene, s.width, s.height, s.depth, embree_rgba8, &embree_info)
                  : clrt_bench::embree_render(scene, s.width, s.height, s.depth, embree_rgb, &embree_info);
   };
-  if (s.omp) r.omp_threads = omp_frame();  // warm-up
-  if (s.embree) r.embree_threads = embree_frame();
+  if (s.omp && tracers) r.omp_threads = omp_frame();  // warm-up
+  if (s.embree && tracers) r.embree_threads = embree_frame();
   std::vector<double> frames, downloads, omp_ms, frame_ratio, kernel_ratio, embree_ms, embree_build, embree_ratio;
   for (int i = 0; i < r.repeat; ++i) {
     cl.render_into(r.image);  // like the OpenMP tracer's, the image's memory is reused
@@ -143,21 +147,21 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
     downloads.push_back(frame.download_ms);
     r.launches += frame.launches;
     r.host_timed_launches += frame.host_timed_launches;
-    if (s.omp) {
+    if (s.omp && tracers) {
       const auto t1 = Clock::now();
       r.omp_threads = omp_frame();
       omp_ms.push_back(ms_since(t1));
       if (frames.back() > 0) frame_ratio.push_back(omp_ms.back() / frames.back());
       if (r.kernel_ms.back() > 0) kernel_ratio.push_back(omp_ms.back() / r.kernel_ms.back());
     }
-    if (s.embree) {
+    if (s.embree && tracers) {
       r.embree_threads = embree_frame();
       embree_ms.push_back(embree_info.render_ms);
       embree_build.push_back(embree_info.build_ms);
       if (frames.back() > 0) embree_ratio.push_back(embree_ms.back() / frames.back());
     }
   }
-  if (s.omp && s.embree) {
+  if (s.omp && s.embree && tracers) {
     const PixelAgreement a = rgba8 ? compare_rgba8(embree_rgba8, omp_rgba8) : compare_rgb(embree_rgb, omp_rgb);
     r.embree_vs_omp_differ = a.differ;
     r.embree_vs_omp_max_levels = a.max_levels;
@@ -178,7 +182,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   RenderSettings counting = settings;
   counting.kernel.count_rays = true;
   Renderer rc(devs, counting);
-  rc.prepare(scene, s.width, s.height, s.depth);
+  rc.prepare(scene, s.width, s.height, s.depth, s.spp);
   (void)rc.render();
   r.rays = rc.stats().rays;
   if (r.kernel.median > 0) {
@@ -199,7 +203,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
 
   if (s.reference) {
     const auto t2 = Clock::now();
-    r.reference_image = render_reference(scene, s.width, s.height, s.depth);
+    r.reference_image = render_reference(scene, s.width, s.height, s.depth, s.spp);
     r.reference = summarize({ms_since(t2)});
     if (r.frame.median > 0) r.speedup_vs_reference = r.reference.median / r.frame.median;
   }

@@ -28,10 +28,11 @@ namespace clrt {
 
 struct BenchSettings {
   int width = 600, height = 600, depth = 3;
+  int spp = 1;            // N x N samples per pixel (clrt and the reference; the tracers trace one, see omp/embree)
   int repeat = 5;         // >= 1 (--repeat checks it): timed rounds (clrt, OpenMP, Embree frame) after one warm-up each
   bool reference = true;  // time the scalar double reference (and keep its image)
-  bool omp = true;        // time the OpenMP float tracer
-  bool embree = true;     // time the Embree tracer (and check its image against the OpenMP tracer's)
+  bool omp = true;        // time the OpenMP float tracer (one ray per pixel: not run when spp > 1)
+  bool embree = true;     // time the Embree tracer (and check its image against the OpenMP tracer's; not when spp > 1)
   bool builds = true;     // measure cold (no cache) and warm (cache hit) builds
   bool peak = true;       // measure the device's multiply-add peak
 };
@@ -47,7 +48,7 @@ constexpr double kFlopPerSphereTest = 25;
 
 struct BenchResult {
   std::string device, options;
-  int width = 0, height = 0, depth = 0, repeat = 0;
+  int width = 0, height = 0, depth = 0, spp = 1, repeat = 0;
   bool rgba8 = false;            // frames (clrt's and the tracers') held as 8-bit RGBA, else float RGB
   Stats build_cold, build_warm;  // ms per build of every device (the longest, they run in parallel)
   bool build_warm_cached = false;

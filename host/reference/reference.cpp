@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace clrt {
 namespace {
@@ -107,21 +108,36 @@ class Tracer {
 
 }  // namespace
 
-Image render_reference(const Scene& scene, int width, int height, int depth) {
+Image render_reference(const Scene& scene, int width, int height, int depth, int spp) {
+  if (spp < 1) throw std::invalid_argument("render_reference: spp must be >= 1");
   Image img(width, height);
   Tracer tracer(scene);
   const Camera& cam = scene.camera;
   const auto& m = cam.rotation;
+  const int n = spp;
   for (int x = -width / 2; x < width - width / 2; ++x) {
     for (int y = height / 2 - height; y < height / 2; ++y) {  // row in [0, H)
-      // CanvasToViewport, then the camera rotation.
-      Vec3 d{x * cam.viewport_w / width, y * cam.viewport_h / height, cam.projection_plane_d};
-      Vec3 D{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
-             m[6] * d.x + m[7] * d.y + m[8] * d.z};
       int col = width / 2 + x;
       int row = height / 2 - y - 1;
       size_t p = size_t(row) * width + col;
-      Vec3 c = tracer.TraceRay(cam.position, D, 1, kInf, depth, &img.hit[p], &img.shadowed[p]);
+      // Supersampling: the N x N sub-pixel points (x + o_i, y + o_j),
+      // o_k = (k + 0.5) / N - 0.5; N = 1 is the point (x, y) itself.
+      Vec3 sum{0, 0, 0};
+      for (int s = 0; s < n * n; ++s) {
+        const double ox = ((s % n) + 0.5) / n - 0.5, oy = ((s / n) + 0.5) / n - 0.5;
+        // CanvasToViewport, then the camera rotation.
+        Vec3 d{(x + ox) * cam.viewport_w / width, (y + oy) * cam.viewport_h / height, cam.projection_plane_d};
+        Vec3 D{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
+               m[6] * d.x + m[7] * d.y + m[8] * d.z};
+        // The classification is the first sample's.
+        const bool first = s == 0;
+        Vec3 c = tracer.TraceRay(cam.position, D, 1, kInf, depth, first ? &img.hit[p] : nullptr,
+                                 first ? &img.shadowed[p] : nullptr);
+        sum = first ? c : sum + c;
+      }
+      // The mean of the samples (for N = 1, the one sample's colour exactly).
+      const double samples = double(n) * n;
+      const Vec3 c{sum.x / samples, sum.y / samples, sum.z / samples};
       img.rgb[p * 3 + 0] = c.x;
       img.rgb[p * 3 + 1] = c.y;
       img.rgb[p * 3 + 2] = c.z;

@@ -38,7 +38,7 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
   source_ = load_kernel_source("trace.cl", config_.kernel_dir);
 }
 
-void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth, const Bvh* bvh) {
+void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth, int spp, const Bvh* bvh) {
   if (requested_lanes_ == 0) {
     KernelConfig requested = config_;
     requested.lanes = 0;
@@ -67,7 +67,7 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   }
   check_local_size();
   auto t0 = std::chrono::steady_clock::now();
-  SceneData data = pack_scene(scene, config_.precision, width, height, depth);
+  SceneData data = pack_scene(scene, config_.precision, width, height, depth, spp);
   params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
   spheres_ = upload(context_, queue_, data.spheres);
   lights_ = upload(context_, queue_, data.lights);

@@ -56,9 +56,10 @@ class DeviceRenderer {
   // Builds the (scene-specialized) program and uploads the scene, and its
   // hierarchy when the configuration uses one (`bvh`: build_bvh(scene), made
   // once for every device by the Renderer). Must be called before
-  // render_tile(); calling again with another scene or depth rebuilds, with
-  // the same one reuses the program.
-  void prepare(const Scene& scene, int width, int height, int depth, const Bvh* bvh);
+  // render_tile(); calling again with another scene or depth rebuilds where
+  // the build options differ, else reuses the program; another spp (N x N
+  // samples per pixel, read at run time) never rebuilds.
+  void prepare(const Scene& scene, int width, int height, int depth, int spp, const Bvh* bvh);
 
   // Resets the ray counts and download time of a frame.
   void begin_frame();

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "render/scene_buffers.hpp"
+#include "util/error.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -29,7 +30,9 @@ const std::string& Renderer::options() const {
   return devices_.front()->options();
 }
 
-void Renderer::prepare(const Scene& scene, int width, int height, int depth) {
+void Renderer::prepare(const Scene& scene, int width, int height, int depth, int spp) {
+  if (spp < 1 || spp > CLRT_MAX_SPP)
+    throw UserError("--spp must be in [1, " + std::to_string(CLRT_MAX_SPP) + "] (got " + std::to_string(spp) + ")");
   FrameStats stats;
   std::unique_ptr<Bvh> bvh;
   if (uses_bvh(settings_.kernel.accel, scene.spheres.size(), settings_.kernel.precision)) {
@@ -50,7 +53,7 @@ void Renderer::prepare(const Scene& scene, int width, int height, int depth) {
   std::vector<std::thread> threads;
   auto prepare_device = [&](size_t i) {
     try {
-      devices_[i]->prepare(scene, width, height, depth, bvh.get());
+      devices_[i]->prepare(scene, width, height, depth, spp, bvh.get());
     } catch (...) {
       errors[i] = std::current_exception();
     }

@@ -53,8 +53,10 @@ class Renderer {
   // UserError when the settings do not suit a device (lanes, fp64, local size).
   Renderer(const std::vector<DeviceInfo>& devices, const RenderSettings& settings);
 
-  // Builds every device's program (in parallel) and uploads the scene.
-  void prepare(const Scene& scene, int width, int height, int depth);
+  // Builds every device's program (in parallel) and uploads the scene. spp:
+  // N x N samples per pixel (supersampling, kernels/trace.cl), a run-time
+  // value like the depth: another spp rebuilds nothing.
+  void prepare(const Scene& scene, int width, int height, int depth, int spp = 1);
   // Renders the prepared scene: the whole frame, shared by every device.
   Image render();
   // The same into `out`, whose memory is reused when it has the frame's size

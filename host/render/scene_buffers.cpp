@@ -78,13 +78,14 @@ Vec3 packing_origin(const Scene& scene, Precision p) {
   return camera_relative(p) ? scene.camera.position : Vec3{};
 }
 
-SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth) {
+SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, int spp) {
   SceneData d;
   const Vec3 shift = packing_origin(scene, precision);
   clrt_params& p = d.params;
   p.width = width;
   p.height = height;
   p.depth = depth;
+  p.spp = spp;
   p.n_spheres = static_cast<clrt_i32>(scene.spheres.size());
   p.n_lights = static_cast<clrt_i32>(scene.lights.size());
   split_hi_lo(scene.camera.viewport_w, p.viewport[0], p.viewport_lo[0]);

@@ -31,7 +31,8 @@ int kernel_light_code(LightType type);
 // misses, rounded): hi + lo carries ~48 bits, and lo is 0 for a float.
 void split_hi_lo(double value, float& hi, float& lo);
 
-SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth);
+// spp: N for N x N samples per pixel (clrt_params.spp, read at run time).
+SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, int spp = 1);
 
 // One entry of CLRT_LAYOUT_FIELDS as this (host) compiler lays it out; the
 // layout test compares it with the kernel compiler's view.

@@ -131,6 +131,33 @@ TEST_CASE("bad image size and depth options", "[cli]") {
   CHECK(dir.entries().empty());
 }
 
+TEST_CASE("bad --spp: one error line, exit 2, on every command that renders", "[cli][spp]") {
+  TempDir dir;
+  const std::string out = dir / "out.png";
+  const std::string demo = clrt_test::source_path("scenes/cgfs-demo.json");
+  check_bad_render({"--spp", "0"}, out, {"--spp: Value 0 not in range 1 to 16"});
+  check_bad_render({"--spp", "17"}, out, {"--spp: Value 17 not in range 1 to 16"});
+  check_bad_render({"--spp", "-2"}, out, {"--spp"});
+  check_bad_render({"--spp", "two"}, out, {"--spp"});
+  check_bad_render({"--spp", "2.5"}, out, {"--spp"});
+  check_error(run_clrt({"render", demo, "-o", out, "--engine", "reference", "--spp", "0"}), {"--spp"});
+  check_error(run_clrt({"compare", demo, "--spp", "17"}), {"--spp: Value 17 not in range 1 to 16"});
+  check_error(run_clrt({"bench", demo, "--spp", "0"}), {"--spp: Value 0 not in range 1 to 16"});
+  check_error(run_clrt({"sweep", demo, "--spp", "99"}), {"--spp: Value 99 not in range 1 to 16"});
+  check_error(run_clrt({"accuracy", demo, "--spp", "-1"}), {"--spp"});
+  CHECK(dir.entries().empty());
+}
+
+TEST_CASE("compare at spp 2 on the command line: reference and OpenCL agree", "[cli][spp]") {
+  TempDir dir;
+  const std::string demo = clrt_test::source_path("scenes/cgfs-demo.json");
+  RunResult r =
+      run_clrt({"compare", demo, "--width", "40", "--height", "30", "--spp", "2", "--json", "--fail-percent", "0.05"});
+  INFO("stdout: " << r.out << "\nstderr: " << r.err);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Contains("\"spp\": 2"));
+}
+
 TEST_CASE("bad output paths fail before rendering", "[cli]") {
   TempDir dir;
   SECTION("directory does not exist") {

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "app/options.hpp"
+#include "clrt_layout.h"
 #include "util/error.hpp"
 
 using namespace clrt;
@@ -71,6 +72,18 @@ TEST_CASE("the depth defaults to the scene's", "[options]") {
   CHECK(o.effective_depth(s) == 4);
   o.depth = 0;
   CHECK(o.effective_depth(s) == 0);
+}
+
+TEST_CASE("the spp option: 1 by default, checked against 1 to CLRT_MAX_SPP", "[options][spp]") {
+  ImageOptions o;
+  CHECK(o.spp == 1);
+  o.validate();
+  o.spp = CLRT_MAX_SPP;
+  o.validate();
+  o.spp = 0;
+  CHECK_THROWS_AS(o.validate(), UserError);
+  o.spp = CLRT_MAX_SPP + 1;
+  CHECK_THROWS_AS(o.validate(), UserError);
 }
 
 TEST_CASE("sweep depth ranges: A:B or N within [0, CLRT_MAX_DEPTH]", "[options]") {

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "edge_scene.hpp"
 #include "image/image.hpp"
 #include "reference/reference.hpp"
 #include "scene/scene_json.hpp"
@@ -104,4 +105,56 @@ TEST_CASE("shadow rays: point lights only up to the light, directional to infini
   CHECK(px(blocked, 50, 74, 0) == 0);
   CHECK(lit.shadowed[p] == 0);
   CHECK(px(lit, 50, 74, 0) > 0);
+}
+
+TEST_CASE("supersampling: spp 1 is the book's one ray per pixel, bit for bit", "[reference][spp]") {
+  // The default is spp 1, and its sample offset is exactly 0: x + 0.0 == x,
+  // so every ray, colour and classification is the single-ray render's.
+  Scene s = clrt_test::load("scenes/cgfs-demo.json");
+  const Image a = render_reference(s, 61, 47, 3), b = render_reference(s, 61, 47, 3, 1);
+  CHECK(a.rgb == b.rgb);
+  CHECK(a.hit == b.hit);
+  CHECK(a.shadowed == b.shadowed);
+  // The centre pixel by hand (see "centre pixel of the demo scene"), at spp 1.
+  const double i = 0.2 + 0.6 / std::sqrt(14.0) + 0.2 * 4 / std::sqrt(33.0) + 0.2 * std::pow(4 / std::sqrt(33.0), 500);
+  CHECK(px(render_reference(s, 600, 600, 0, 1), 300, 299, 0) == Approx(255 * i).epsilon(1e-12));
+}
+
+TEST_CASE("supersampling: a pixel cut by a silhouette is the exact mean of its samples", "[reference][spp]") {
+  using clrt_test::EdgeScene;
+  const Scene s = EdgeScene::scene();
+  for (int n = 1; n <= 5; ++n) {
+    INFO("spp " << n);
+    REQUIRE(EdgeScene::hits(n) >= 0);
+    const Image img = render_reference(s, EdgeScene::kWidth, EdgeScene::kHeight, 3, n);
+    const int row = EdgeScene::row();
+    for (int c = 0; c < 3; ++c) {
+      // k of N^2 samples on the sphere: exactly (k c + (N^2 - k) bg) / N^2.
+      CHECK(px(img, EdgeScene::col(EdgeScene::kEdgeX), row, c) == EdgeScene::expected(n, c));
+      // Well inside and well outside the disc: every sample alike.
+      CHECK(px(img, EdgeScene::col(10), row, c) == EdgeScene::kColour[c]);
+      CHECK(px(img, EdgeScene::col(25), row, c) == EdgeScene::kBackground[c]);
+    }
+    // The classification is sample 0's, at offset (o_0, o_0): left of the
+    // edge, on the sphere.
+    CHECK(img.hit[size_t(row) * img.width + EdgeScene::col(EdgeScene::kEdgeX)] == 0);
+  }
+  // What the test rests on: 1, 2, 6, 8 and 15 of 1, 4, 9, 16 and 25 samples.
+  CHECK(EdgeScene::hits(1) == 1);
+  CHECK(EdgeScene::hits(2) == 2);
+  CHECK(EdgeScene::hits(3) == 6);
+  CHECK(EdgeScene::hits(4) == 8);
+  CHECK(EdgeScene::hits(5) == 15);
+}
+
+TEST_CASE("supersampling: the classification is the first sample's", "[reference][spp]") {
+  // Every sample of pixel (kEdgeX + 1, 0) lies right of the edge and misses.
+  // Pixel (-kEdgeX, 0) mirrors the edge pixel: at spp 4 its two right
+  // sample columns hit the sphere, and sample 0 (the lower left) misses.
+  using clrt_test::EdgeScene;
+  const Image img = render_reference(EdgeScene::scene(), EdgeScene::kWidth, EdgeScene::kHeight, 3, 4);
+  const size_t row = size_t(EdgeScene::row()) * img.width;
+  CHECK(img.hit[row + EdgeScene::col(EdgeScene::kEdgeX + 1)] == -1);
+  CHECK(img.hit[row + EdgeScene::col(-EdgeScene::kEdgeX)] == -1);
+  CHECK(px(img, EdgeScene::col(-EdgeScene::kEdgeX), EdgeScene::row(), 0) > 0);
 }

@@ -67,6 +67,8 @@ TEST_CASE("pack_scene: counts, sizes, materials and light codes", "[buffers]") {
   CHECK(d.params.width == 640);
   CHECK(d.params.height == 480);
   CHECK(d.params.depth == 3);
+  CHECK(d.params.spp == 1);  // the default: one ray per pixel
+  CHECK(pack_scene(demo, Precision::Naive, 640, 480, 3, 4).params.spp == 4);
   CHECK(d.params.n_spheres == 4);
   CHECK(d.params.n_lights == 3);
   REQUIRE(d.spheres.size() == 4);

@@ -27,22 +27,6 @@ Image render_with(const DeviceInfo& dev, KernelConfig cfg, const Scene& s, int w
   return img;
 }
 
-// Byte-identical: the same float (exactly representable in the double
-// Image), the same hit sphere and the same shadow bits in every pixel.
-void require_identical(const Image& a, const Image& b) {
-  REQUIRE(a.width == b.width);
-  REQUIRE(a.height == b.height);
-  size_t rgb_diff = 0, hit_diff = 0, shadow_diff = 0;
-  for (size_t i = 0; i < a.rgb.size(); ++i) rgb_diff += a.rgb[i] != b.rgb[i];
-  for (size_t i = 0; i < a.pixels(); ++i) {
-    hit_diff += a.hit[i] != b.hit[i];
-    shadow_diff += a.shadowed[i] != b.shadowed[i];
-  }
-  CHECK(rgb_diff == 0);
-  CHECK(hit_diff == 0);
-  CHECK(shadow_diff == 0);
-}
-
 // 157 x 118: the width is not a multiple of the 8 (or 16) pixels a
 // specialized work-item shades, so partial packets are exercised.
 constexpr int kW = 157, kH = 118;
@@ -58,7 +42,8 @@ TEST_CASE("specialized and generic kernels give identical images on every scene"
     Scene s = load_scene(path);
     for (int depth : {0, 1, 3}) {
       INFO(path << " depth " << depth);
-      require_identical(render_with(dev, special, s, kW, kH, depth), render_with(dev, generic, s, kW, kH, depth));
+      clrt_test::require_identical(render_with(dev, special, s, kW, kH, depth),
+                                   render_with(dev, generic, s, kW, kH, depth));
     }
   }
 }
@@ -78,7 +63,7 @@ TEST_CASE("one specialized program serves every depth that reflects", "[opencl][
     r.prepare(s, kW, kH, depth);
     CHECK(r.options() == options);
     CHECK(r.stats().build_ms == 0);  // the program of the first prepare()
-    require_identical(r.render(), render_with(dev, generic, s, kW, kH, depth));
+    clrt_test::require_identical(r.render(), render_with(dev, generic, s, kW, kH, depth));
   }
 }
 
@@ -97,7 +82,7 @@ TEST_CASE("every precision and lane count gives the generic kernel's image", "[o
       KernelConfig special = generic;
       special.specialize = true;
       special.lanes = l;
-      require_identical(render_with(dev, special, s, kW, kH, 2), ref);
+      clrt_test::require_identical(render_with(dev, special, s, kW, kH, 2), ref);
     }
   }
 }
@@ -115,7 +100,7 @@ TEST_CASE("program cache: a second build is a hit and renders the same image", "
   REQUIRE(dir.entries().size() == 1);  // one entry, no temporary left behind
   Image second = render_with(dev, cfg, s, 64, 48, 2, nullptr, &t2);
   CHECK(t2.build_cached);
-  require_identical(first, second);
+  clrt_test::require_identical(first, second);
 
   // A corrupted entry (flipped byte in the binary) is detected by its
   // checksum and rebuilt from source; then it is valid again.
@@ -125,12 +110,12 @@ TEST_CASE("program cache: a second build is a hit and renders the same image", "
   std::ofstream(entry, std::ios::binary | std::ios::trunc) << data;
   Image third = render_with(dev, cfg, s, 64, 48, 2, nullptr, &t3);
   CHECK_FALSE(t3.build_cached);
-  require_identical(first, third);
+  clrt_test::require_identical(first, third);
   // A truncated entry as well.
   std::ofstream(entry, std::ios::binary | std::ios::trunc) << data.substr(0, 40);
   Image fourth = render_with(dev, cfg, s, 64, 48, 2, nullptr, &t4);
   CHECK_FALSE(t4.build_cached);
-  require_identical(first, fourth);
+  clrt_test::require_identical(first, fourth);
 
   // --no-cache: neither reads nor writes.
   KernelConfig off = cfg;
@@ -165,13 +150,7 @@ TEST_CASE("ray counters match counts derived by hand", "[opencl][rays]") {
   // depth reflection rays, and one shadow ray per hit for each of the 2
   // non-ambient lights. A second sphere far away is never hit but still
   // tested: 2 tests per ray.
-  Scene inside = parse_scene(
-      R"({"spheres": [{"center": [0, 0, 0], "radius": 100, "color": [9, 9, 9], "reflective": 0.5, "specular": 10},
-                      {"center": [0, 0, 1000], "radius": 1, "color": [9, 9, 9]}],
-          "lights": [{"type": "ambient", "intensity": 0.2},
-                     {"type": "point", "intensity": 0.5, "position": [0, 0, 0]},
-                     {"type": "directional", "intensity": 0.3, "direction": [1, 1, 1]}]})",
-      "inside");
+  Scene inside = clrt_test::camera_inside_sphere();
   const int depth = 3;
   for (bool specialize : {true, false}) {
     INFO("specialized " << specialize);
