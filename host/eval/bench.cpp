@@ -18,19 +18,25 @@ std::string BenchResult::kernel_time_source() const {
   return time_source(host_timed_launches, launches);
 }
 
-PixelAgreement compare_rgb(const std::vector<float>& a, const std::vector<float>& b, int levels) {
+namespace {
+
+// The agreement of two images of `channels` values per pixel, comparing the
+// first three channels as 8-bit levels (`level` maps a stored value to one).
+template <class T, class Level>
+PixelAgreement pixel_agreement(const std::vector<T>& a, const std::vector<T>& b, size_t channels, int levels,
+                               Level level) {
   PixelAgreement p;
   if (a.size() != b.size()) {
     p.differ = 1;
     p.max_levels = 255;
     return p;
   }
-  const size_t pixels = a.size() / 3;
+  const size_t pixels = a.size() / channels;
   size_t differ = 0;
   for (size_t i = 0; i < pixels; ++i) {
     int worst = 0;
     for (size_t c = 0; c < 3; ++c)
-      worst = std::max(worst, std::abs(int(to_u8(a[3 * i + c])) - int(to_u8(b[3 * i + c]))));
+      worst = std::max(worst, std::abs(level(a[channels * i + c]) - level(b[channels * i + c])));
     p.max_levels = std::max(p.max_levels, worst);
     if (worst > levels) ++differ;
   }
@@ -38,23 +44,14 @@ PixelAgreement compare_rgb(const std::vector<float>& a, const std::vector<float>
   return p;
 }
 
+}  // namespace
+
+PixelAgreement compare_rgb(const std::vector<float>& a, const std::vector<float>& b, int levels) {
+  return pixel_agreement(a, b, 3, levels, [](float v) { return int(to_u8(v)); });
+}
+
 PixelAgreement compare_rgba8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int levels) {
-  PixelAgreement p;
-  if (a.size() != b.size()) {
-    p.differ = 1;
-    p.max_levels = 255;
-    return p;
-  }
-  const size_t pixels = a.size() / 4;
-  size_t differ = 0;
-  for (size_t i = 0; i < pixels; ++i) {
-    int worst = 0;
-    for (size_t c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(a[4 * i + c]) - int(b[4 * i + c])));
-    p.max_levels = std::max(p.max_levels, worst);
-    if (worst > levels) ++differ;
-  }
-  if (pixels) p.differ = double(differ) / double(pixels);
-  return p;
+  return pixel_agreement(a, b, 4, levels, [](uint8_t v) { return int(v); });
 }
 
 BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
