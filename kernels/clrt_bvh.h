@@ -67,23 +67,49 @@ CLRT_INLINE int descend(__global const clrt_bvh_node* node, const vec3* D, int* 
   return near;
 }
 
-/* The roots of leaf entry `entry` (a sphere); returns the sphere's index. */
-CLRT_INLINE int entry_roots(int entry, const vec3* O, const vec3* D, lint self, __global const clrt_sphere* spheres,
+/* The distances to leaf entry `entry` (a sphere's two roots, or a triangle's
+ * distance twice); returns the primitive's id. A ray never meets the
+ * triangle it starts on again (its id is `self`). */
+#if CLRT_HAS_TRIANGLES
+#define SHEAR_ARG , const ray_shear* shear
+#define SHEAR_PASS , &shear
+#else
+#define SHEAR_ARG
+#define SHEAR_PASS
+#endif
+CLRT_INLINE int entry_roots(int entry, const vec3* O, const vec3* D SHEAR_ARG, lint self, const scene_data* scene,
                             lreal* t1, lreal* t2, lint* tests) {
   const int i = entry & CLRT_PRIMITIVE_INDEX_MASK;
-  intersect(O, D, spheres, i, self == i, t1, t2);
   *tests += (lint)1;
+#if CLRT_HAS_TRIANGLES
+  if ((entry >> CLRT_PRIMITIVE_KIND_SHIFT) == CLRT_PRIMITIVE_TRIANGLE) {
+    const int id = TRIANGLE_ID0(scene->params) + i;
+    const lreal t = triangle_distance(O, shear, &scene->triangles[i]);
+    *t1 = self == id ? (lreal)REAL_INFINITY : t;
+    *t2 = *t1;
+    return id;
+  }
+#endif
+  intersect(O, D, scene->spheres, i, self == i, t1, t2);
   return i;
 }
 
 /* Closest hit in (tmin, tmax) per lane: the sphere index or -1. */
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
-                                      __global const clrt_params* params, __global const clrt_sphere* spheres,
-                                      __global const clrt_bvh_node* nodes, __global const int* primitives, lreal* t_out,
-                                      lint* tests) {
+                                      const scene_data* scene, lreal* t_out, lint* tests) {
+  __global const clrt_bvh_node* nodes = scene->nodes;
+  __global const int* primitives = scene->primitives;
   const vec3 inverse = inverse_direction(D);
   lreal closest = REAL_INFINITY;
   lint best = -1;
+#if CLRT_HAS_PLANES
+  /* planes first (they are not in the hierarchy): a near plane shortens
+   * every box test below */
+  closest_flat(O, D, tmin, tmax, self, scene, 0, &closest, &best, tests);
+#endif
+#if CLRT_HAS_TRIANGLES
+  const ray_shear shear = shear_of(D);
+#endif
   int stack[CLRT_BVH_MAX_DEPTH];
   int top = 0, index = 0;
   for (;;) {
@@ -95,7 +121,7 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
       }
       for (int k = node->first; k < node->first + node->count; ++k) {
         lreal t1, t2;
-        const int i = entry_roots(primitives[k], O, D, self, spheres, &t1, &t2, tests);
+        const int i = entry_roots(primitives[k], O, D SHEAR_PASS, self, scene, &t1, &t2, tests);
         /* ties to the lower index, as the loop over every sphere gives them */
         lint nearer = ((t1 < closest) | ((t1 == closest) & ((lint)i < best))) & (tmin < t1) & (t1 < tmax);
         closest = nearer ? t1 : closest;
@@ -115,10 +141,17 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
 /* Any hit in (tmin, tmax) per lane, for the lanes in `active`; the walk ends
  * when every one of them is blocked. */
 CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
-                                  __global const clrt_params* params, __global const clrt_sphere* spheres,
-                                  __global const clrt_bvh_node* nodes, __global const int* primitives, lint* tests) {
+                                  const scene_data* scene, lint* tests) {
+  __global const clrt_bvh_node* nodes = scene->nodes;
+  __global const int* primitives = scene->primitives;
   const vec3 inverse = inverse_direction(D);
   lint blocked = 0;
+#if CLRT_HAS_PLANES
+  blocked = any_flat(O, D, tmin, tmax, self, active, scene, 0, tests);
+#endif
+#if CLRT_HAS_TRIANGLES
+  const ray_shear shear = shear_of(D);
+#endif
   int stack[CLRT_BVH_MAX_DEPTH];
   int top = 0, index = 0;
   for (;;) {
@@ -132,7 +165,7 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
       }
       for (int k = node->first; k < node->first + node->count; ++k) {
         lreal t1, t2;
-        entry_roots(primitives[k], O, D, self, spheres, &t1, &t2, tests);
+        entry_roots(primitives[k], O, D SHEAR_PASS, self, scene, &t1, &t2, tests);
         blocked |= ((tmin < t1) & (t1 < tmax)) | ((tmin < t2) & (t2 < tmax));
       }
     }

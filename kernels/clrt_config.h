@@ -11,7 +11,12 @@
  *                        host/render/kernel_features.hpp)
  *   CLRT_LIGHT_TYPES     with the counts: each light's CLRT_LIGHT_*, "0,1,2"
  *   CLRT_HAS_AMBIENT, CLRT_HAS_POINT, CLRT_HAS_DIRECTIONAL,
- *   CLRT_HAS_SPECULAR, CLRT_HAS_REFLECTIVE  (0/1; generic build: all 1)
+ *   CLRT_HAS_SPECULAR, CLRT_HAS_REFLECTIVE,
+ *   CLRT_HAS_TRANSPARENT, CLRT_HAS_PLANES, CLRT_HAS_TRIANGLES
+ *                        (0/1; generic build: all 1)
+ *   CLRT_DEPTH_BOUND     the deepest recursion the program serves (the
+ *                        pending rays of the tree walk take one slot per
+ *                        level; default CLRT_MAX_DEPTH)
  *   CLRT_COMPENSATED_SPHERES  specialized robust builds: 0 when no sphere
  *                        needs compensated arithmetic, 1 when every one does
  *   CLRT_COMPENSATED_FLAGS  with the counts, when the spheres differ: each
@@ -62,9 +67,9 @@
 #define CLRT_LIGHT_COUNT(params) ((params)->n_lights)
 #endif
 /* The recursion depth is a constant where the host compiles it in
- * (CLRT_DEPTH); otherwise it is read at run time, bounded by the explicit
- * stack's frames: CLRT_DEPTH_BOUND where the host gives one (one program
- * then serves every depth up to it), else CLRT_MAX_DEPTH. */
+ * (CLRT_DEPTH); otherwise it is read at run time, bounded by the slots of
+ * the pending rays (trace.cl): CLRT_DEPTH_BOUND where the host gives one
+ * (one program then serves every depth up to it), else CLRT_MAX_DEPTH. */
 #if defined(CLRT_SPECIALIZED) && defined(CLRT_DEPTH)
 #define CLRT_RECURSION_DEPTH(params) CLRT_DEPTH
 #define CLRT_STACK_FRAMES (CLRT_DEPTH + 1)
@@ -98,6 +103,15 @@
 #endif
 #ifndef CLRT_HAS_REFLECTIVE
 #define CLRT_HAS_REFLECTIVE 1
+#endif
+#ifndef CLRT_HAS_TRANSPARENT
+#define CLRT_HAS_TRANSPARENT 1
+#endif
+#ifndef CLRT_HAS_PLANES
+#define CLRT_HAS_PLANES 1
+#endif
+#ifndef CLRT_HAS_TRIANGLES
+#define CLRT_HAS_TRIANGLES 1
 #endif
 #endif
 

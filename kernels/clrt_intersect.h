@@ -3,6 +3,7 @@
 #ifndef CLRT_INTERSECT_H
 #define CLRT_INTERSECT_H
 
+#include "clrt_flat.h"
 #include "clrt_math.h"
 
 #if CLRT_PRECISION != CLRT_PRECISION_NAIVE && CLRT_PRECISION != CLRT_PRECISION_FP64
@@ -138,21 +139,20 @@ CLRT_INLINE void intersect(const vec3* Op, const vec3* Dp, __global const clrt_s
 #ifdef CLRT_BVH
 #include "clrt_bvh.h"
 #else
-/* The queries below test every sphere; with -DCLRT_BVH clrt_bvh.h gives the
- * same answers through the hierarchy (`nodes`, `primitives`, unused here).
- * `tests` counts the sphere tests per lane. */
+/* The queries below test every primitive; with -DCLRT_BVH clrt_bvh.h gives
+ * the same answers through the hierarchy (scene->nodes, scene->primitives,
+ * unused here). `tests` counts the primitive tests per lane. */
 
-/* Closest hit in (tmin, tmax) per lane; the sphere index or -1. */
+/* Closest hit in (tmin, tmax) per lane; the primitive id or -1. */
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
-                                      __global const clrt_params* params, __global const clrt_sphere* spheres,
-                                      __global const clrt_bvh_node* nodes, __global const int* primitives, lreal* t_out,
-                                      lint* tests) {
+                                      const scene_data* scene, lreal* t_out, lint* tests) {
+  __global const clrt_params* params = scene->params;
   *tests += (lint)CLRT_SPHERE_COUNT(params);
   lreal closest = REAL_INFINITY;
   lint best = -1;
   CLRT_UNROLL for (int i = 0; i < CLRT_SPHERE_COUNT(params); ++i) {
     lreal t1, t2;
-    intersect(O, D, spheres, i, self == i, &t1, &t2);
+    intersect(O, D, scene->spheres, i, self == i, &t1, &t2);
     lint nearer = (t1 < closest) & (tmin < t1) & (t1 < tmax);
     closest = nearer ? t1 : closest;
     best = nearer ? (lint)i : best;
@@ -160,6 +160,9 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
     closest = nearer ? t2 : closest;
     best = nearer ? (lint)i : best;
   }
+#if CLRT_HAS_PLANES || CLRT_HAS_TRIANGLES
+  closest_flat(O, D, tmin, tmax, self, scene, 1, &closest, &best, tests);
+#endif
   *t_out = closest;
   return best;
 }
@@ -168,8 +171,8 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
  * blocker, but only whether one exists matters, so testing stops as soon as
  * every lane that needs the answer (`active`) has found one. */
 CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
-                                  __global const clrt_params* params, __global const clrt_sphere* spheres,
-                                  __global const clrt_bvh_node* nodes, __global const int* primitives, lint* tests) {
+                                  const scene_data* scene, lint* tests) {
+  __global const clrt_params* params = scene->params;
   /* counted as every sphere, like the first bounce of the book's loop */
   *tests += (lint)CLRT_SPHERE_COUNT(params);
   lint blocked = 0;
@@ -178,9 +181,12 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
     if (ALL(blocked | !active)) break;
 #endif
     lreal t1, t2;
-    intersect(O, D, spheres, i, self == i, &t1, &t2);
+    intersect(O, D, scene->spheres, i, self == i, &t1, &t2);
     blocked |= ((tmin < t1) & (t1 < tmax)) | ((tmin < t2) & (t2 < tmax));
   }
+#if CLRT_HAS_PLANES || CLRT_HAS_TRIANGLES
+  if (!ALL(blocked | !active)) blocked |= any_flat(O, D, tmin, tmax, self, active & !blocked, scene, 1, tests);
+#endif
   return blocked;
 }
 #endif /* CLRT_BVH */

@@ -144,7 +144,7 @@ typedef float CANVAS_T;
 /* One clrt_ray_counts per lane's pixel. Without CLRT_COUNT_RAYS nothing is
  * ever added, and the unused counters are compiled away. */
 typedef struct {
-  lint primary, shadow, reflection, sphere_tests;
+  lint primary, shadow, reflection, sphere_tests, refraction;
 } lane_ray_counts;
 #ifdef CLRT_COUNT_RAYS
 /* adds n to `counter` in the lanes of `mask` */

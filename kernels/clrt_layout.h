@@ -53,8 +53,15 @@ typedef struct clrt_sphere {
   /* robust kernel: 1 = compensated arithmetic for this sphere, 0 = the
    * cheap path (the host's rule: host/render/conditioning.hpp) */
   clrt_i32 compensated;
-  clrt_f32 pad[2];
-} clrt_sphere; /* 64 bytes */
+  /* chapter 5: the share of unreflected light that passes through (0 = an
+   * opaque sphere), the index inside, and the index of the medium around the
+   * sphere (the smallest transparent sphere containing it, else 1; the
+   * host's outside_medium(), host/render/scene_buffers.cpp) */
+  clrt_f32 transparency;
+  clrt_f32 refractive_index;
+  clrt_f32 outside_index;
+  clrt_f32 pad[3];
+} clrt_sphere; /* 80 bytes */
 
 typedef struct clrt_light {
   clrt_i32 type; /* CLRT_LIGHT_* */
@@ -81,8 +88,46 @@ typedef struct clrt_params {
   clrt_f32 proj_d_lo; /* lo parts of the camera scalars (fp64 builds) */
   clrt_f32 viewport_lo[2];
   clrt_f32 epsilon_lo;
-  clrt_f32 pad1;
-} clrt_params; /* 168 bytes */
+  clrt_f32 camera_medium; /* refractive index around the camera (1 = air) */
+  clrt_i32 n_planes;      /* chapter 5's other primitives */
+  clrt_i32 n_triangles;
+  clrt_i32 adaptive;            /* adaptive supersampling (scene/sampling.hpp): 1 = on */
+  clrt_f32 adaptive_threshold;  /* its T, in 8-bit levels */
+} clrt_params; /* 184 bytes */
+
+/* The material of a plane or triangle (spheres carry theirs inline). */
+typedef struct clrt_material {
+  clrt_f32 color[3]; /* 0..255 */
+  clrt_f32 specular; /* -1 = matte */
+  clrt_f32 reflective;
+  clrt_f32 pad[3];
+} clrt_material; /* 32 bytes */
+
+/* An infinite plane through `point` with unit `normal` (hi and lo parts). */
+typedef struct clrt_plane {
+  clrt_f32 point[3];
+  clrt_i32 material; /* index into the materials */
+  clrt_f32 normal[3];
+  clrt_f32 pad;
+  clrt_f32 point_lo[3];
+  clrt_f32 pad_lo;
+  clrt_f32 normal_lo[3];
+  clrt_f32 pad_lo2;
+} clrt_plane; /* 64 bytes */
+
+/* A triangle: its vertices (hi parts, then lo parts) and its material. */
+typedef struct clrt_triangle {
+  clrt_f32 v0[3];
+  clrt_i32 material; /* index into the materials */
+  clrt_f32 v1[3];
+  clrt_f32 pad;
+  clrt_f32 v2[3];
+  clrt_f32 pad2;
+  clrt_f32 v0_lo[3];
+  clrt_f32 v1_lo[3];
+  clrt_f32 v2_lo[3];
+  clrt_f32 pad_lo[3];
+} clrt_triangle; /* 96 bytes */
 
 /* Per-pixel ray counters written when CLRT_COUNT_RAYS is defined. */
 typedef struct clrt_ray_counts {
@@ -90,6 +135,7 @@ typedef struct clrt_ray_counts {
   clrt_i32 shadow;
   clrt_i32 reflection;
   clrt_i32 sphere_tests;
+  clrt_i32 refraction;
 } clrt_ray_counts;
 
 /* A node of the bounding volume hierarchy over the scene's primitives
@@ -107,8 +153,12 @@ typedef struct clrt_bvh_node {
 } clrt_bvh_node; /* 32 bytes */
 
 /* Primitive list entries: the primitive's kind in the top bits, its index in
- * the scene's list of that kind below (spheres only, so far). */
+ * the scene's list of that kind below. Planes are never in the hierarchy
+ * (unbounded). A hit is reported as one id over all primitives: spheres
+ * 0..S-1, then planes S..S+P-1, then triangles S+P.. (the reference numbers
+ * them the same way). */
 #define CLRT_PRIMITIVE_SPHERE 0
+#define CLRT_PRIMITIVE_TRIANGLE 1
 #define CLRT_PRIMITIVE_KIND_SHIFT 28
 #define CLRT_PRIMITIVE_INDEX_MASK 0x0fffffff
 /* Deepest leaf the host builds; a walk keeps at most one node per level on
@@ -128,6 +178,9 @@ typedef struct clrt_bvh_node {
   FIELD(clrt_sphere, specular)         \
   FIELD(clrt_sphere, reflective)       \
   FIELD(clrt_sphere, compensated)      \
+  FIELD(clrt_sphere, transparency)     \
+  FIELD(clrt_sphere, refractive_index) \
+  FIELD(clrt_sphere, outside_index)    \
   FIELD(clrt_sphere, pad)              \
   FIELD(clrt_light, type)              \
   FIELD(clrt_light, intensity)         \
@@ -150,11 +203,38 @@ typedef struct clrt_bvh_node {
   FIELD(clrt_params, proj_d_lo)        \
   FIELD(clrt_params, viewport_lo)      \
   FIELD(clrt_params, epsilon_lo)       \
-  FIELD(clrt_params, pad1)             \
+  FIELD(clrt_params, camera_medium)    \
+  FIELD(clrt_params, n_planes)         \
+  FIELD(clrt_params, n_triangles)      \
+  FIELD(clrt_params, adaptive)         \
+  FIELD(clrt_params, adaptive_threshold) \
+  FIELD(clrt_material, color)          \
+  FIELD(clrt_material, specular)       \
+  FIELD(clrt_material, reflective)     \
+  FIELD(clrt_material, pad)            \
+  FIELD(clrt_plane, point)             \
+  FIELD(clrt_plane, material)          \
+  FIELD(clrt_plane, normal)            \
+  FIELD(clrt_plane, pad)               \
+  FIELD(clrt_plane, point_lo)          \
+  FIELD(clrt_plane, pad_lo)            \
+  FIELD(clrt_plane, normal_lo)         \
+  FIELD(clrt_plane, pad_lo2)           \
+  FIELD(clrt_triangle, v0)             \
+  FIELD(clrt_triangle, material)       \
+  FIELD(clrt_triangle, v1)             \
+  FIELD(clrt_triangle, pad)            \
+  FIELD(clrt_triangle, v2)             \
+  FIELD(clrt_triangle, pad2)           \
+  FIELD(clrt_triangle, v0_lo)          \
+  FIELD(clrt_triangle, v1_lo)          \
+  FIELD(clrt_triangle, v2_lo)          \
+  FIELD(clrt_triangle, pad_lo)         \
   FIELD(clrt_ray_counts, primary)      \
   FIELD(clrt_ray_counts, shadow)       \
   FIELD(clrt_ray_counts, reflection)   \
   FIELD(clrt_ray_counts, sphere_tests) \
+  FIELD(clrt_ray_counts, refraction)   \
   FIELD(clrt_bvh_node, lower)          \
   FIELD(clrt_bvh_node, first)          \
   FIELD(clrt_bvh_node, upper)          \

@@ -1,5 +1,6 @@
 /* trace.cl - the render kernel: primary ray, shadow rays and bounded-depth
- * reflections with an explicit stack (no recursion), per pixel.
+ * reflections and refractions as an explicit, bounded tree walk (no
+ * recursion), per pixel.
  *
  * A work-item shades a block of CLRT_LANES pixels, CLRT_PACKET_COLS wide and
  * CLRT_PACKET_ROWS high, one per SIMD lane (clrt_lanes.h; lanes beyond the
@@ -12,12 +13,14 @@
  *   clrt_config.h     the -D options from the host, defaults, derived switches
  *   clrt_lanes.h      the precision's scalar, lane types and mask helpers
  *   clrt_math.h       3-vectors, hi/lo values, per-precision arithmetic
+ *   clrt_flat.h       planes and triangles (watertight), the scene's buffers
  *   clrt_intersect.h  ray-sphere roots, closest hit and any hit
  *   clrt_bvh.h        the same queries through the hierarchy (-DCLRT_BVH)
  *   clrt_shade.h      hit material, ComputeLighting, reflected rays
  * This file holds the camera rays (N x N per pixel with supersampling), the
- * bounce loop, the unwinding of the stack, the average and the stores. */
+ * walk over the rays they spawn, the average and the stores. */
 #include "clrt_config.h"
+#include "clrt_flat.h"
 #include "clrt_intersect.h"
 #include "clrt_lanes.h"
 #include "clrt_layout.h"
@@ -25,82 +28,137 @@
 #include "clrt_shade.h"
 
 /* One camera ray per lane, through the viewport point (dx, dy) (before the
- * camera rotation m), and its bounded-depth reflections with an explicit
- * stack: the book's TraceRay without recursion. Returns its colour; where
- * `classify` is set (a pixel's first sample) its primary hit and blocked
- * lights go to *hit_id and *shadow_mask. */
+ * camera rotation m), and the rays it spawns: the book's TraceRay without
+ * recursion, in the lanes of `active`. Returns its colour; `classify` 1 (a
+ * pixel's first sample) stores its primary hit and blocked lights in *hit_id
+ * and *shadow_mask, 2 its primary hit only, 0 neither.
+ *
+ * TraceRay's colour is linear in its children's colours, so the walk carries
+ * each ray's weight (the product of the shares along its path) and adds
+ * weight x local colour at every hit, front to back: a hit with reflectivity
+ * r and transparency t keeps (1 - r)(1 - t) of its local colour and passes
+ * r to its reflected child and (1 - r) t to its refracted one (all of it to
+ * the reflected child under total internal reflection); a ray that ends
+ * (depth reached, or neither share) adds its whole local colour, a miss the
+ * background. With reflection only, every ray has at most one child and no
+ * stack is needed. With transparency (CLRT_HAS_TRANSPARENT) a hit can have
+ * two children: the reflected one continues and the refracted one waits in
+ * the slot of its level, a bounded tree walk in depth-first order. All
+ * lanes walk the same tree positions (lanes without a ray there are masked),
+ * so every slot index is uniform; a slot holds at most one ray per lane
+ * because a level's slot is written only after every deeper one was
+ * emptied. The slots take CLRT_DEPTH_BOUND + 1 entries of (origin,
+ * direction, weight, medium, start sphere, mask) per lane: 40 bytes per lane
+ * and level in float builds (docs/performance.md, "Refraction"). */
 CLRT_INLINE vec3 trace_camera_ray(const lreal dx, const lreal dy, const real* m, const real dz, const vec3 camera,
                                   const real epsilon, const vec3 background, const int depth, const int classify,
-                                  __global const clrt_params* params, __global const clrt_sphere* spheres,
-                                  __global const clrt_light* lights, __global const clrt_bvh_node* nodes,
-                                  __global const int* primitives, lint* hit_id, lint* shadow_mask,
+                                  const lint active, const scene_data* scene, lint* hit_id, lint* shadow_mask,
                                   lane_ray_counts* counts) {
   vec3 D = v3(m[0] * dx + m[1] * dy + m[2] * dz, m[3] * dx + m[4] * dy + m[5] * dz, m[6] * dx + m[7] * dy + m[8] * dz);
   vec3 O = camera;
-  COUNT_IN_LANES(counts->primary, MASK_TRUE, 1); /* one primary ray per lane and sample */
+  COUNT_IN_LANES(counts->primary, active, 1); /* one primary ray per lane and sample */
 
-  /* Explicit stack: one frame (local colour, reflectivity) per bounce that
-   * continues; unwound below as (1 - r) * local + r * reflected. A frame is
-   * pushed only by a bounce that continues, so frame k always belongs to
-   * bounce k and sp (per lane) is the number of frames. */
-  vec3 stack_local[CLRT_STACK_FRAMES];
-  lreal stack_r[CLRT_STACK_FRAMES];
-  lint sp = 0;
-  vec3 result = background;
+  vec3 result = v3(0, 0, 0);
+  lreal weight = 1;       /* of the lane's current ray */
   real tmin = 1;          /* the same for all lanes: 1 for primary rays, epsilon after */
   lint self = -1;         /* sphere the lane's current ray starts on */
-  lint alive = MASK_TRUE; /* lanes whose ray of this bounce exists */
+  lint alive = active;    /* lanes whose current ray exists */
+  int level = 0;          /* of the current rays (0: camera rays), the same for all lanes */
+#if CLRT_HAS_TRANSPARENT
+  lreal medium = scene->params->camera_medium; /* refractive index the current ray travels in */
+  vec3 pending_origin[CLRT_STACK_FRAMES], pending_direction[CLRT_STACK_FRAMES];
+  lreal pending_weight[CLRT_STACK_FRAMES], pending_medium[CLRT_STACK_FRAMES];
+  lint pending_self[CLRT_STACK_FRAMES], pending[CLRT_STACK_FRAMES];
+#endif
 
-  for (int bounce = 0; bounce <= depth; ++bounce) {
+  for (;;) {
     lreal t;
     lint tests = 0;
-    const lint hit =
-        closest_intersection(&O, &D, tmin, REAL_INFINITY, self, params, spheres, nodes, primitives, &t, &tests);
+    const lint hit = closest_intersection(&O, &D, tmin, REAL_INFINITY, self, scene, &t, &tests);
     COUNT_IN_LANES(counts->sphere_tests, alive, tests);
     const lint miss = alive & (hit < 0);
-    result = vsel(miss, background, result);
+    result = vsel(miss, vadd(result, vscale(weight, background)), result);
     alive &= !miss;
-    if (!ANY(alive)) break;
+    if (ANY(alive)) {
+      const hit_surface surface = hit_material(hit, scene);
+      const vec3 Pt = vadd(O, vscale(t, D));
+      const vec3 N = surface_normal(&surface, &Pt, &D);
+      const vec3 V = vneg(D);
+      const int primary_classified = classify == 1 && level == 0;
+      if (classify && level == 0) *hit_id = alive ? hit : *hit_id;
 
-    vec3 C, color;
-    lreal specular, reflective;
-    hit_material(hit, params, spheres, &C, &color, &specular, &reflective);
-    const vec3 Pt = vadd(O, vscale(t, D));
-    vec3 N = vsub(Pt, C);
-    N = vscale(1 / vlen(N), N);
-    const vec3 V = vneg(D);
-    const int primary_classified = classify && bounce == 0;
-    if (primary_classified) *hit_id = alive ? hit : *hit_id;
-
-    const lreal intensity = compute_lighting(&Pt, &N, &V, specular, hit, alive, epsilon, primary_classified, params,
-                                             spheres, lights, nodes, primitives, shadow_mask, counts);
-    const vec3 local_color = vscale(intensity, color);
-#if CLRT_HAS_REFLECTIVE
-    const lint stop = bounce >= depth ? alive : alive & (reflective <= 0);
+      const lreal intensity = compute_lighting(&Pt, &N, &V, surface.specular, hit, alive, epsilon, primary_classified,
+                                               scene, shadow_mask, counts);
+      const vec3 local_color = vscale(intensity, surface.color);
+#if CLRT_HAS_REFLECTIVE || CLRT_HAS_TRANSPARENT
+      /* the shares of the local colour and of the children */
+      lreal reflected_share = surface.reflective;
+#if CLRT_HAS_TRANSPARENT
+      lreal refracted_share = (1 - surface.reflective) * surface.transparency;
+      const lreal local_share = (1 - surface.reflective) * (1 - surface.transparency);
+      lreal n2;
+      lint tir;
+      const vec3 T = refract_ray(D, N, medium, &surface, &n2, &tir);
+      reflected_share = tir ? reflected_share + refracted_share : reflected_share;
+      refracted_share = tir ? (lreal)0 : refracted_share;
+      const lint stop = level >= depth ? alive : alive & (reflected_share <= 0) & (refracted_share <= 0);
 #else
-    const lint stop = alive;
+      const lreal local_share = 1 - surface.reflective;
+      const lint stop = level >= depth ? alive : alive & (reflected_share <= 0);
 #endif
-    result = vsel(stop, local_color, result);
-    alive &= !stop;
-    if (!ANY(alive)) break;
-    stack_local[bounce] = local_color;
-    stack_r[bounce] = reflective;
-    sp = alive ? (lint)(bounce + 1) : sp;
-    const vec3 reflected = reflect_ray(V, N);
-    O = vsel(alive, Pt, O);
-    D = vsel(alive, reflected, D);
-    self = alive ? hit : self;
+      result = vsel(alive, vadd(result, vscale(stop ? weight : weight * local_share, local_color)), result);
+      alive &= !stop;
+      if (ANY(alive)) {
+        const vec3 R = reflect_ray(V, N);
+#if CLRT_HAS_TRANSPARENT
+        const lint reflects = alive & (reflected_share > 0), refracts = alive & (refracted_share > 0);
+        /* Where both exist the refracted child waits; slot level + 1 is
+         * empty in every lane (see above). */
+        pending[level + 1] = reflects & refracts;
+        pending_origin[level + 1] = Pt;
+        pending_direction[level + 1] = T;
+        pending_weight[level + 1] = weight * refracted_share;
+        pending_medium[level + 1] = n2;
+        pending_self[level + 1] = hit;
+        COUNT_IN_LANES(counts->reflection, reflects, 1);
+        COUNT_IN_LANES(counts->refraction, refracts, 1);
+        /* The ray that goes on: the reflected one where it exists, else the
+         * refracted one (into its new medium). */
+        D = vsel(alive, vsel(reflects, R, T), D);
+        weight = alive ? weight * (reflects ? reflected_share : refracted_share) : weight;
+        medium = (alive & !reflects) ? n2 : medium;
+#else
+        COUNT_IN_LANES(counts->reflection, alive, 1);
+        D = vsel(alive, R, D);
+        weight = alive ? weight * reflected_share : weight;
+#endif
+        O = vsel(alive, Pt, O);
+        self = alive ? hit : self;
+        tmin = epsilon;
+        ++level;
+        continue;
+      }
+#else
+      result = vsel(alive, vadd(result, vscale(weight, local_color)), result);
+#endif
+    }
+#if CLRT_HAS_TRANSPARENT
+    /* Every lane's path ended: resume the deepest waiting rays. */
+    int k = level;
+    while (k > 0 && !ANY(pending[k])) --k;
+    if (k == 0) break;
+    alive = pending[k];
+    pending[k] = 0;
+    O = pending_origin[k];
+    D = pending_direction[k];
+    weight = pending_weight[k];
+    medium = pending_medium[k];
+    self = pending_self[k];
     tmin = epsilon;
-    COUNT_IN_LANES(counts->reflection, alive, 1);
-  }
-  /* Unwind: frames [sp, top) were never pushed in a lane and are skipped. */
-#if CLRT_LANES == 1
-  for (int k = sp - 1; k >= 0; --k) {
+    level = k;
 #else
-  for (int k = min(depth, CLRT_STACK_FRAMES) - 1; k >= 0; --k) {
+    break;
 #endif
-    const vec3 blended = vadd(vscale(1 - stack_r[k], stack_local[k]), vscale(stack_r[k], result));
-    result = vsel(k < sp, blended, result);
   }
   return result;
 }
@@ -108,7 +166,9 @@ CLRT_INLINE vec3 trace_camera_ray(const lreal dx, const lreal dy, const real* m,
 __kernel void render(__global const clrt_params* params, __global const clrt_sphere* spheres,
                      __global const clrt_light* lights, __global CANVAS_T* out, __global int* aux,
                      __global clrt_ray_counts* ray_counts, const int x0, const int y0, const int tile_w,
-                     const int tile_h, __global const clrt_bvh_node* nodes, __global const int* primitives) {
+                     const int tile_h, __global const clrt_bvh_node* nodes, __global const int* primitives,
+                     __global const clrt_plane* planes, __global const clrt_triangle* triangles,
+                     __global const clrt_material* materials) {
   const int gx = (int)get_global_id(0), gy = (int)get_global_id(1);
   /* first pixel of this work-item in the tile: its lanes are a block of
    * CLRT_PACKET_COLS x CLRT_PACKET_ROWS pixels, row by row */
@@ -119,7 +179,8 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
   const lint row = y0 + py + LANE_IOTA / CLRT_PACKET_COLS;
   const lint x = col - W / 2;
   const lint y = H / 2 - 1 - row;
-  lane_ray_counts counts = {(lint)0, (lint)0, (lint)0, (lint)0};
+  lane_ray_counts counts = {(lint)0, (lint)0, (lint)0, (lint)0, (lint)0};
+  const scene_data scene = {params, spheres, lights, nodes, primitives, planes, triangles, materials};
 
   /* The camera: CanvasToViewport, then the rotation (per sample below). */
   const real viewport_w = REAL_FROM_HI_LO(params->viewport[0], params->viewport_lo[0]);
@@ -149,24 +210,67 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
      * time (docs/performance.md, "Supersampling"). */
     const lreal dx = TO_LREAL(x) * viewport_w / (real)W;
     const lreal dy = TO_LREAL(y) * viewport_h / (real)H;
-    result = trace_camera_ray(dx, dy, m, dz, camera, epsilon, background, depth, 1, params, spheres, lights, nodes,
-                              primitives, &hit_id, &shadow_mask, &counts);
+    result = trace_camera_ray(dx, dy, m, dz, camera, epsilon, background, depth, 1, MASK_TRUE, &scene, &hit_id,
+                              &shadow_mask, &counts);
   } else {
+    /* One loop, one inlined copy of the tracer, for both uniform and
+     * adaptive supersampling (each call site of trace_camera_ray() is a
+     * whole copy of it: separate loops made the program twice as long to
+     * build). Adaptive (scene/sampling.hpp; the reference states the same
+     * rule): the grid's four corner samples come first; a lane whose corners
+     * hit the same primitive (or all miss) within T levels per channel keeps
+     * their mean, the others go on with every other sample in order. */
+    const int adaptive = params->adaptive;
+    const int total = spp * spp;
+    const int corners[4] = {0, spp - 1, spp * (spp - 1), spp * spp - 1};
+    vec3 corner_color[4];
+    lint corner_hit[4];
+    lint refine = MASK_TRUE; /* lanes that trace sample k */
     vec3 sum;
-    for (int s = 0; s < spp * spp; ++s) {
+    for (int k = 0; k < total; ++k) {
+      int s = k;
+      if (adaptive) {
+        if (k < 4) {
+          s = corners[k];
+        } else {
+          /* the (k - 4)th other sample, in ascending order */
+          s = k - 3;
+          s += s >= spp - 1;
+          s += s >= spp * (spp - 1);
+        }
+        if (k == 4) {
+          const lreal threshold = params->adaptive_threshold;
+          lint flat =
+              (corner_hit[1] == corner_hit[0]) & (corner_hit[2] == corner_hit[0]) & (corner_hit[3] == corner_hit[0]);
+#define CORNER_SPAN(c)                                                                                 \
+  (fmax(fmax(corner_color[0].c, corner_color[1].c), fmax(corner_color[2].c, corner_color[3].c)) - \
+   fmin(fmin(corner_color[0].c, corner_color[1].c), fmin(corner_color[2].c, corner_color[3].c)))
+          flat &= (CORNER_SPAN(x) <= threshold) & (CORNER_SPAN(y) <= threshold) & (CORNER_SPAN(z) <= threshold);
+#undef CORNER_SPAN
+          refine = !flat;
+          if (!ANY(refine)) break;
+        }
+      }
       const real ox = ((real)(s % spp) + (real)0.5) / (real)spp - (real)0.5;
       const real oy = ((real)(s / spp) + (real)0.5) / (real)spp - (real)0.5;
       const lreal dx = (TO_LREAL(x) + ox) * viewport_w / (real)W;
       const lreal dy = (TO_LREAL(y) + oy) * viewport_h / (real)H;
-      const vec3 color = trace_camera_ray(dx, dy, m, dz, camera, epsilon, background, depth, s == 0, params, spheres,
-                                          lights, nodes, primitives, &hit_id, &shadow_mask, &counts);
-      if (s == 0)
+      /* classification: sample 0's hit and shadows; the other corners' hits */
+      lint sample_hit = -1;
+      const int classify = k == 0 ? 1 : (adaptive && k < 4 ? 2 : 0);
+      const vec3 color = trace_camera_ray(dx, dy, m, dz, camera, epsilon, background, depth, classify, refine, &scene,
+                                          k == 0 ? &hit_id : &sample_hit, &shadow_mask, &counts);
+      if (adaptive && k < 4) {
+        corner_color[k] = color;
+        corner_hit[k] = k == 0 ? hit_id : sample_hit;
+      }
+      if (k == 0)
         sum = color;
       else
-        sum = vadd(sum, color);
+        sum = vsel(refine, vadd(sum, color), sum);
     }
-    /* The mean of the samples (summed unclamped). */
-    const real samples = (real)(spp * spp);
+    /* The mean of the samples traced (summed unclamped). */
+    const lreal samples = (adaptive && total > 4) ? (refine ? (lreal)total : (lreal)4) : (lreal)total;
     result = v3(sum.x / samples, sum.y / samples, sum.z / samples);
   }
 
@@ -177,7 +281,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
   int hit_ids[1] = {hit_id}, shadow_masks[1] = {shadow_mask};
 #ifdef CLRT_COUNT_RAYS
   int primary[1] = {counts.primary}, shadow[1] = {counts.shadow}, reflection[1] = {counts.reflection},
-      sphere_tests[1] = {counts.sphere_tests};
+      sphere_tests[1] = {counts.sphere_tests}, refraction[1] = {counts.refraction};
 #endif
 #else
   CANVAS_T red[CLRT_LANES], green[CLRT_LANES], blue[CLRT_LANES];
@@ -190,11 +294,13 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
   STORE_LANES(shadow_masks, shadow_mask);
 #endif
 #ifdef CLRT_COUNT_RAYS
-  int primary[CLRT_LANES], shadow[CLRT_LANES], reflection[CLRT_LANES], sphere_tests[CLRT_LANES];
+  int primary[CLRT_LANES], shadow[CLRT_LANES], reflection[CLRT_LANES], sphere_tests[CLRT_LANES],
+      refraction[CLRT_LANES];
   STORE_LANES(primary, counts.primary);
   STORE_LANES(shadow, counts.shadow);
   STORE_LANES(reflection, counts.reflection);
   STORE_LANES(sphere_tests, counts.sphere_tests);
+  STORE_LANES(refraction, counts.refraction);
 #endif
 #endif
   for (int j = 0; j < CLRT_LANES; ++j) {
@@ -217,6 +323,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     ray_counts[idx].shadow = shadow[j];
     ray_counts[idx].reflection = reflection[j];
     ray_counts[idx].sphere_tests = sphere_tests[j];
+    ray_counts[idx].refraction = refraction[j];
 #endif
   }
 }

@@ -7,7 +7,10 @@
 # on its default device (tagged [opencl] because they need one), and so do
 # tests tagged [per-case-builds], which build a program per generated case
 # (40 builds: under a minute on PoCL, ~5 minutes on rusticl with cold
-# caches, most of this script's time in CI). Registered with CTest
+# caches, most of this script's time in CI). Tests that sweep a matrix of
+# builds (lane counts, generic, fp64) run only the default build here
+# (CLRT_TEST_BUILDS=default, tests/test_util.hpp: every_build()): each program
+# is a cold build of 10-40 s on rusticl. Registered with CTest
 # (CMakeLists.txt).
 set -euo pipefail
 clrt=$1 tests=$2
@@ -22,6 +25,7 @@ fi
 status=0
 for index in "${others[@]}"; do
   echo "== OpenCL tests on device $index: $("$clrt" devices | awk -v i="$index" '$1 == i {$1=""; print}' | cut -c1-90)"
-  CLRT_TEST_DEVICE=$index "$tests" '[opencl]~[multidevice]~[cli]~[per-case-builds]' || status=1
+  CLRT_TEST_DEVICE=$index CLRT_TEST_BUILDS=default "$tests" '[opencl]~[multidevice]~[cli]~[per-case-builds]' ||
+    status=1
 done
 exit $status

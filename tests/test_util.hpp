@@ -43,6 +43,37 @@ inline clrt::Image render_cl(const clrt::Scene& s, int width, int height, int de
   return r.render();
 }
 
+// Whether a test runs every build of its matrix (precisions, lane counts,
+// generic) or only the default one: tests/every_device.sh sets
+// CLRT_TEST_BUILDS=default for the devices after the default one, where each
+// program costs a cold build (rusticl's llvmpipe: 10-40 s per program; the
+// default device runs every build).
+inline bool every_build() {
+  const char* builds = std::getenv("CLRT_TEST_BUILDS");
+  return !(builds && std::string(builds) == "default");
+}
+
+// The kernel builds a test sweeps, by name: the default (robust,
+// specialized) at 16 and at 1 lane, the generic kernel, and fp64 where `dev`
+// has it; only the default where every_build() is off.
+inline std::vector<std::pair<std::string, clrt::KernelConfig>> kernel_builds(const clrt::DeviceInfo& dev) {
+  if (!every_build()) return {{"default", clrt::KernelConfig{}}};
+  clrt::KernelConfig special16;
+  special16.lanes = 16;
+  clrt::KernelConfig special1;
+  special1.lanes = 1;
+  clrt::KernelConfig generic;
+  generic.specialize = false;
+  std::vector<std::pair<std::string, clrt::KernelConfig>> builds = {
+      {"specialized, 16 lanes", special16}, {"specialized, 1 lane", special1}, {"generic", generic}};
+  if (dev.fp64) {
+    clrt::KernelConfig fp64;
+    fp64.precision = clrt::Precision::Fp64;
+    builds.push_back({"fp64", fp64});
+  }
+  return builds;
+}
+
 // Every scenes/*.json of the source tree, sorted (`folder` "scenes/large":
 // the scenes too large for the suites that render with the reference).
 inline std::vector<std::string> shipped_scenes(const std::string& folder = "scenes") {

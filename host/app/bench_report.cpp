@@ -63,6 +63,7 @@ nlohmann::json bench_json(const BenchResult& r) {
       {"rays_primary", r.rays.primary},
       {"rays_shadow", r.rays.shadow},
       {"rays_reflection", r.rays.reflection},
+      {"rays_refraction", r.rays.refraction},
       {"rays_total", r.rays.total()},
       {"sphere_tests", r.rays.sphere_tests},
       {"mrays_per_s", r.mrays_per_s},
@@ -117,9 +118,11 @@ void print_bench(const BenchResult& r) {
                 double(r.bvh_bytes) / (1 << 20), r.bvh_depth + 1);
   else
     std::printf("hierarchy      none: every ray tests every sphere (--accel)\n");
-  std::printf("rays           %llu total: %llu primary, %llu shadow, %llu reflection; %llu ray-sphere tests\n",
-              (unsigned long long)r.rays.total(), (unsigned long long)r.rays.primary, (unsigned long long)r.rays.shadow,
-              (unsigned long long)r.rays.reflection, (unsigned long long)r.rays.sphere_tests);
+  std::printf(
+      "rays           %llu total: %llu primary, %llu shadow, %llu reflection, %llu refraction; %llu ray-sphere tests\n",
+      (unsigned long long)r.rays.total(), (unsigned long long)r.rays.primary, (unsigned long long)r.rays.shadow,
+      (unsigned long long)r.rays.reflection, (unsigned long long)r.rays.refraction,
+      (unsigned long long)r.rays.sphere_tests);
   std::printf("throughput     %.1f Mrays/s, %.3f ns per ray-sphere test (median kernel time%s)\n", r.mrays_per_s,
               r.ns_per_sphere_test, r.host_timed_launches ? ", host clock" : "");
   if (r.peak_gflops > 0)
@@ -139,8 +142,7 @@ void print_bench(const BenchResult& r) {
   if (r.reference.n > 0)
     std::printf("reference      %s (scalar double, 1 thread): speedup %.2fx (reference / clrt frame)\n",
                 format_stats(r.reference, "ms", 1).c_str(), r.speedup_vs_reference);
-  if (r.spp > 1)
-    std::printf("OpenMP/Embree  not run: they trace one ray per pixel (--spp %d traces %d)\n", r.spp, r.spp * r.spp);
+  if (!r.tracers_not_run.empty()) std::printf("OpenMP/Embree  not run: %s\n", r.tracers_not_run.c_str());
   if (r.omp.n > 0) {
     std::printf("OpenMP float   %s (%d threads, -O3 -march=native)\n", format_stats(r.omp).c_str(), r.omp_threads);
     std::printf("speedup        %s (OpenMP frame / clrt frame, per round; > 1: clrt is faster)\n",

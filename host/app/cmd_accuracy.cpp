@@ -47,7 +47,7 @@ void add_accuracy_command(CLI::App& app) {
   o->device.add(cmd, /*several=*/false);
   o->kernel.add(cmd, /*with_variant=*/false);
   add_repeat_option(cmd, o->repeat, "Timed kernel runs per variant after one warm-up");
-  cmd->add_option("--variants", o->variants, "Comma list of variants (default naive,stable,robust,fast,fp64)");
+  cmd->add_option("--variants", o->variants, "Comma list of variants")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print one JSON object instead of the table");
   cmd->add_flag("--markdown", o->markdown, "Print the table as Markdown");
   cmd->add_option("--csv", o->csv, "Also write the rows as CSV to this file");
@@ -61,6 +61,7 @@ void add_accuracy_command(CLI::App& app) {
     s.height = o->image.height;
     s.depth = o->image.depth;
     s.spp = o->image.spp;
+    s.adaptive = o->image.adaptive;
     s.repeat = o->repeat;
     s.base = o->kernel.config();
     s.variants = parse_variants(o->variants);

@@ -35,10 +35,12 @@ void add_bench_command(CLI::App& app) {
                 "outputs); the OpenMP and Embree tracers write the same format");
   cmd->add_flag("--no-map", *no_map,
                 "Read the results into host memory even where the device could map them (the path of discrete "
-                "devices)");
+                "devices)")
+      ->group(kDeveloperGroup);
   cmd->add_flag("--no-overlap", *no_overlap,
-                "Where results are read, one band at a time (default: a band's results travel while the next "
-                "band's kernel runs)");
+                "Where results are read, one band at a time (without it, a band's results travel while the next "
+                "band's kernel runs)")
+      ->group(kDeveloperGroup);
   cmd->callback([o, repeat, as_json, no_omp, no_embree, no_reference, float_frames, no_map, no_overlap] {
     o->validate();
     Scene scene = load_scene(o->scene_path);
@@ -47,6 +49,7 @@ void add_bench_command(CLI::App& app) {
     s.height = o->image.height;
     s.depth = o->image.effective_depth(scene);
     s.spp = o->image.spp;
+    s.adaptive = o->image.adaptive;
     s.repeat = *repeat;
     s.omp = !*no_omp;
     s.embree = !*no_embree;

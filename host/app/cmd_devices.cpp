@@ -2,6 +2,7 @@
 // optionally a check that each renders correctly.
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "app/compare_report.hpp"
 #include "app/options.hpp"
@@ -13,24 +14,41 @@
 
 namespace clrt {
 
+namespace {
+
+// "15.6 GiB", "512 MiB".
+std::string memory_text(cl_ulong bytes) {
+  char buf[32];
+  if (bytes >= (cl_ulong(1) << 30))
+    std::snprintf(buf, sizeof buf, "%.1f GiB", double(bytes) / double(cl_ulong(1) << 30));
+  else
+    std::snprintf(buf, sizeof buf, "%.0f MiB", double(bytes) / double(cl_ulong(1) << 20));
+  return buf;
+}
+
+}  // namespace
+
 void add_devices_command(CLI::App& app) {
   auto check = std::make_shared<bool>(false);
   auto precision = std::make_shared<std::string>("robust");
   auto* cmd = app.add_subcommand("devices", "List OpenCL platforms and devices");
   cmd->add_flag("--check", *check, "Self-test each device: build, render 160x120, compare with the reference");
-  cmd->add_option("--precision", *precision, "Precision variant for --check (default robust)");
+  cmd->add_option("--precision", *precision, "Precision variant for --check")->capture_default_str();
   cmd->callback([check, precision] {
     KernelConfig cfg;
     cfg.precision = parse_precision(*precision);
     auto devs = list_devices();
     const size_t chosen = default_device(devs);
-    std::printf("%-5s %-28s %-52s %-6s %-18s %4s %5s\n", "index", "platform", "device", "type", "OpenCL C", "CUs",
-                "fp64");
+    // The first column stays the global index (tests/every_device.sh reads it).
+    std::printf("%-5s %-5s %-28s %-52s %-6s %-18s %4s %5s %9s  %s\n", "index", "P:D", "platform", "device", "type",
+                "OpenCL C", "CUs", "fp64", "memory", "driver");
     int failed = 0;
     for (const auto& d : devs) {
       const std::string index = std::to_string(d.index) + (size_t(d.index) == chosen ? "*" : "");
-      std::printf("%-5s %-28.28s %-52.52s %-6s %-18.18s %4u %5s\n", index.c_str(), d.platform_name.c_str(),
-                  d.name.c_str(), d.type.c_str(), d.c_version.c_str(), d.compute_units, d.fp64 ? "yes" : "no");
+      std::printf("%-5s %-5s %-28.28s %-52.52s %-6s %-18.18s %4u %5s %9s  %.24s\n", index.c_str(),
+                  platform_device_id(d).c_str(), d.platform_name.c_str(), d.name.c_str(), d.type.c_str(),
+                  d.c_version.c_str(), d.compute_units, d.fp64 ? "yes" : "no", memory_text(d.global_mem).c_str(),
+                  d.driver.c_str());
       if (!*check) continue;
       DeviceCheckResult r = check_device(d, cfg);
       if (!r.error.empty())
@@ -44,7 +62,9 @@ void add_devices_command(CLI::App& app) {
             time_source_note(r.host_timed_launches, r.launches).c_str());
       failed += !r.pass;
     }
-    std::printf("* default device (the first GPU, else the first device)\n");
+    std::printf(
+        "* default device (the first GPU, else the first device); --device takes an index, P:D (platform P, its "
+        "device D) or a name/type substring\n");
     if (failed) throw CheckFailure(std::to_string(failed) + " device(s) failed the self-test");
   });
 }

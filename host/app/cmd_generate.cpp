@@ -15,12 +15,14 @@ void add_generate_command(CLI::App& app) {
   auto settings = std::make_shared<RandomSceneSettings>();
   auto out = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("generate", "Write a scene of N random spheres above the book's floor (JSON)");
-  cmd->add_option("--spheres", settings->count, "Number of random spheres (default 1000)")
-      ->check(CLI::Range(size_t(0), kMaxGeneratedSpheres));
-  cmd->add_option("--seed", settings->seed, "Seed of the generator (default 1): the same seed, the same scene");
-  cmd->add_option("--fill", settings->fill,
-                  "Fraction of the volume the spheres fill (default 0.05): the density at every count")
-      ->check(CLI::Range(1e-6, 1.0));
+  cmd->add_option("--spheres", settings->count, "Number of random spheres")
+      ->check(CLI::Range(size_t(0), kMaxGeneratedSpheres))
+      ->capture_default_str();
+  cmd->add_option("--seed", settings->seed, "Seed of the generator: the same seed, the same scene")
+      ->capture_default_str();
+  cmd->add_option("--fill", settings->fill, "Fraction of the volume the spheres fill: the density at every count")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
   cmd->add_option("-o,--output", *out, "Scene file to write ('-' = standard output)")->required();
   cmd->callback([settings, out] {
     check_writable(*out, "scene");  // fail before the work

@@ -60,15 +60,16 @@ void add_scaling_command(CLI::App& app) {
   auto plot = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand(
       "scaling", "Frame time against the number of spheres (random scenes made in memory), beside the Embree tracer");
-  cmd->add_option("--spheres", *counts, "Sphere counts, separated by commas (default 1000,10000,100000)");
-  cmd->add_option("--seed", settings->seed, "Seed of the scenes (default 5)");
-  cmd->add_option("--fill", settings->fill, "Fraction of the volume the spheres fill (default 0.05)")
-      ->check(CLI::Range(1e-6, 1.0));
+  cmd->add_option("--spheres", *counts, "Sphere counts, separated by commas")->capture_default_str();
+  cmd->add_option("--seed", settings->seed, "Seed of the scenes")->capture_default_str();
+  cmd->add_option("--fill", settings->fill, "Fraction of the volume the spheres fill")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
   image->add(cmd, /*with_depth=*/true, /*with_spp=*/false);  // beside Embree: one ray per pixel
   device->add(cmd, /*several=*/true);
   kernel->add(cmd, /*with_variant=*/true);
   launch->add(cmd);
-  add_repeat_option(cmd, *repeat, "Timed rounds per scene after one warm-up (default 3)");
+  add_repeat_option(cmd, *repeat, "Timed rounds per scene after one warm-up");
   cmd->add_flag("--no-embree", *no_embree, "Skip the Embree comparison");
   cmd->add_option("--csv", *csv, "Write the table as CSV to this file");
   cmd->add_option("--plot", *plot, "Write a log-log plot of frame time against spheres here (PNG, ...)");

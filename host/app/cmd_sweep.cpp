@@ -26,8 +26,9 @@ void add_sweep_command(CLI::App& app) {
   auto omp = std::make_shared<bool>(false);
   auto* cmd = app.add_subcommand("sweep", "Bench figures and error vs reference per recursion depth (and device)");
   o->add(cmd, /*with_engine=*/false);
-  cmd->add_option("--depths", *depths, "Depth range A:B, inclusive (default 0:10)");
-  cmd->add_option("--devices", *devices, "Devices: index, list (0,1), 'all', or name substring (default: --device)");
+  cmd->add_option("--depths", *depths, "Depth range A:B, inclusive")->capture_default_str();
+  cmd->add_option("--devices", *devices,
+                  "Devices: index, P:D, list (0,1), 'all', or name substring; unset: those of --device");
   cmd->add_option("--csv", *csv, "Write the table as CSV to this file");
   cmd->add_option("--plot", *plot, "Write a PNG of time per depth here (and rays per depth to NAME-rays.EXT)");
   add_repeat_option(cmd, *repeat, "Timed kernel launches per depth after a warm-up");
@@ -45,6 +46,7 @@ void add_sweep_command(CLI::App& app) {
     s.bench.width = o->image.width;
     s.bench.height = o->image.height;
     s.bench.spp = o->image.spp;
+    s.bench.adaptive = o->image.adaptive;
     s.bench.repeat = *repeat;
     s.bench.omp = *omp;
     s.bench.embree = false;  // (bench's comparison; the sweep reports OpenMP only)

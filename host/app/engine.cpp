@@ -13,14 +13,14 @@ Image run_engine(const std::string& engine, const Scene& scene, const RenderOpti
   Image img;
   if (engine == "reference") {
     const auto t0 = Clock::now();
-    img = render_reference(scene, o.image.width, o.image.height, depth, o.image.spp);
+    img = render_reference(scene, o.image.width, o.image.height, depth, o.image.sampling());
     r.wall_ms = ms_since(t0);
     r.device = "host (scalar double)";
   } else {
     RenderSettings settings = o.settings();
     settings.kernel.output = contents;
     Renderer renderer(o.device.devices(), settings);
-    renderer.prepare(scene, o.image.width, o.image.height, depth, o.image.spp);
+    renderer.prepare(scene, o.image.width, o.image.height, depth, o.image.sampling());
     img = renderer.render();
     r.frame = renderer.stats();
     r.wall_ms = r.frame.wall_ms;

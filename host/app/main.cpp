@@ -5,11 +5,22 @@
 #include <cstring>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "app/options.hpp"
 #include "cl/cl.hpp"
+#include "util/edit_distance.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
+
+// The version and build facts, from CMakeLists.txt (project(VERSION) and the
+// configuration), the one place they are written.
+#ifndef CLRT_VERSION
+#define CLRT_VERSION "unknown"
+#endif
+#ifndef CLRT_BUILD_INFO
+#define CLRT_BUILD_INFO "unknown"
+#endif
 
 namespace {
 
@@ -20,10 +31,61 @@ void report(std::string msg, const char* what = "error") {
   std::cerr << "clrt: " << what << ": " << msg << "\n";
 }
 
+std::string command_list(const CLI::App& app) {
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+  return names;
+}
+
+// A word where a subcommand belongs that names none: one error, with the
+// nearest name when it looks like a typo ("rendr" -> "render"). Walks the
+// commands that have subcommands (clrt, clrt cache); stops at the first
+// option or at a command that takes its own arguments. Without the
+// subcommand (`clrt`, `clrt cache`): that command's usage on stdout, then
+// the error.
+void check_command_names(CLI::App& app, int argc, char** argv) {
+  CLI::App* level = &app;
+  std::string parent, path;  // "clrt", "cache" at `clrt cache`
+  for (int i = 1;; ++i) {
+    const auto subs = level->get_subcommands({});
+    if (subs.empty()) return;
+    if (i == argc) {
+      // help(PARENT) shows a subcommand's usage as "PARENT NAME".
+      std::cout << (level == &app ? app.help() : level->help(parent)) << std::flush;
+      throw clrt::UserError("a " + (path.empty() ? std::string() : path + " ") +
+                            "subcommand is required (one of: " + command_list(*level) + ")");
+    }
+    const std::string word = argv[i];
+    if (!word.empty() && word[0] == '-' && word != "--" && level == &app &&
+        !app.get_option_no_throw(word.substr(0, word.find('='))))
+      throw clrt::UserError("unknown option '" + word + "' (before the subcommand: --help or --version)");
+    if (word.empty() || word[0] == '-') return;
+    std::vector<std::string> names;
+    CLI::App* next = nullptr;
+    for (CLI::App* sub : subs) {
+      names.push_back(sub->get_name());
+      if (sub->check_name(word)) next = sub;
+    }
+    if (!next) {
+      const std::string near = clrt::closest_match(word, names);
+      const std::string what = "unknown " + (path.empty() ? std::string() : path + " ") + "command '" + word + "'";
+      if (!near.empty()) throw clrt::UserError(what + "; did you mean '" + near + "'?");
+      throw clrt::UserError(what + " (expected one of: " + command_list(*level) + ")");
+    }
+    parent = level == &app ? "clrt" : parent + " " + level->get_name();
+    path += (path.empty() ? "" : " ") + next->get_name();
+    level = next;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"clrt - OpenCL Whitted ray tracer (Computer Graphics from Scratch, ch. 2-5) with a double reference"};
+  // Named "clrt" whatever the path it runs from (usage lines, the man page).
+  CLI::App app{"clrt - OpenCL Whitted ray tracer (Computer Graphics from Scratch, ch. 2-5) with a double reference",
+               "clrt"};
+  app.set_version_flag("--version", std::string("clrt ") + CLRT_VERSION + "\n" + CLRT_BUILD_INFO,
+                       "Print the version and how this binary was built, then exit");
   app.require_subcommand(1);
   clrt::add_devices_command(app);
   clrt::add_render_command(app);
@@ -34,8 +96,10 @@ int main(int argc, char** argv) {
   clrt::add_accuracy_command(app);
   clrt::add_stability_command(app);
   clrt::add_generate_command(app);
+  clrt::add_cache_command(app);
   clrt::install_signal_cleanup();
   try {
+    check_command_names(app, argc, argv);
     app.parse(argc, argv);
     // Results printed to stdout (tables, JSON) must have reached it: a full
     // disk or closed pipe is an error, not a silent truncation.
@@ -44,6 +108,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     report(e.what());

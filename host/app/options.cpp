@@ -10,16 +10,22 @@
 namespace clrt {
 
 void ImageOptions::add(CLI::App* cmd, bool with_depth, bool with_spp) {
-  cmd->add_option("--width", width, "Image width in pixels (default " + std::to_string(width) + ")");
-  cmd->add_option("--height", height, "Image height in pixels (default " + std::to_string(height) + ")");
+  cmd->add_option("--width", width, "Image width in pixels")->capture_default_str();
+  cmd->add_option("--height", height, "Image height in pixels")->capture_default_str();
   if (with_depth)
-    cmd->add_option("--depth", depth, "Recursion depth (default: the scene's recursion_depth)")
-        ->check(CLI::Range(0, CLRT_MAX_DEPTH));
+    cmd->add_option("--depth", depth, "Recursion depth (unset: the scene's recursion_depth)")
+        ->check(CLI::Range(0, CLRT_MAX_DEPTH))
+        ->default_str("");  // kSceneDepth is no value to show
   if (with_spp)
-    cmd->add_option("--spp", spp,
-                    "Supersampling: N x N stratified rays per pixel, averaged (1 to " + std::to_string(CLRT_MAX_SPP) +
-                        ", default 1)")
-        ->check(CLI::Range(1, CLRT_MAX_SPP));
+    cmd->add_option("--spp", spp, "Supersampling: N x N stratified rays per pixel, averaged")
+        ->check(CLI::Range(1, CLRT_MAX_SPP))
+        ->capture_default_str();
+  if (with_spp)
+    cmd->add_option("--adaptive", adaptive,
+                    "Adaptive supersampling with --spp N >= 3: trace the N x N grid's 4 corner rays first, and the "
+                    "rest only where they hit different primitives or differ by more than this many 8-bit levels")
+        ->check(CLI::Range(0.0, 1e6))
+        ->default_str("");  // unset: off
 }
 
 void ImageOptions::validate() const {
@@ -33,32 +39,42 @@ void ImageOptions::validate() const {
                     ")");
   if (spp < 1 || spp > CLRT_MAX_SPP)
     throw UserError("--spp must be in [1, " + std::to_string(CLRT_MAX_SPP) + "] (got " + std::to_string(spp) + ")");
+  if (adaptive >= 0 && spp < 3)
+    throw UserError(
+        "--adaptive needs --spp 3 or more (the 4 corners of an N x N grid are all of it at N = 2; got --spp " +
+        std::to_string(spp) + ")");
 }
 
 void DeviceOptions::add(CLI::App* cmd, bool several) {
   cmd->add_option("--device", device,
-                  several ? "Device index, list (0,1), 'all', or name/type substring (cpu, gpu, pthread)"
-                          : "Device index or name/type substring (default: first GPU, else first)");
+                  several ? "Device index, P:D (platform:device), list (0,1), 'all', or name/type substring (cpu, gpu, "
+                            "pthread); unset: the first GPU, else the first device (clrt devices)"
+                          : "Device index, P:D (platform:device) or name/type substring; unset: the first GPU, else "
+                            "the first device (clrt devices)");
 }
 
 void KernelOptions::add(CLI::App* cmd, bool with_variant, bool with_specialize) {
   if (with_variant) {
-    cmd->add_option("--precision", precision, "naive | stable | robust (default) | fast | fp64");
+    cmd->add_option("--precision", precision, "naive | stable | robust | fast | fp64")->capture_default_str();
     cmd->add_option("--lanes", lanes,
-                    "Pixels per work-item (SIMD lanes): 1, 4, 8, 16 (default: 16 on AVX-512 CPUs, else 8, for "
-                    "specialized float builds on CPUs; 1 on GPUs, generic and fp64)");
+                    "Pixels per work-item (SIMD lanes): 1, 4, 8, 16; unset: 16 on CPUs with 16-wide floats, else 8, "
+                    "for specialized float builds on CPUs; 1 on GPUs, generic and fp64 builds")
+        ->group(kDeveloperGroup);
   }
   if (with_specialize)
-    cmd->add_flag("--no-specialize", no_specialize, "Build the generic kernel instead of a scene-specialized one");
+    cmd->add_flag("--no-specialize", no_specialize, "Build the generic kernel instead of a scene-specialized one")
+        ->group(kDeveloperGroup);
   cmd->add_option("--accel", accel,
-                  "auto (default: a bounding volume hierarchy from " + std::to_string(kBvhMinSpheres) +
-                      " spheres on), bvh, or none (test every sphere)");
-  cmd->add_flag("--no-ftz", no_ftz, "Do not build with -cl-denorms-are-zero");
+                  "auto (a bounding volume hierarchy from " + std::to_string(kBvhMinSpheres) +
+                      " spheres on), bvh, or none (test every sphere)")
+      ->capture_default_str();
+  cmd->add_flag("--no-ftz", no_ftz, "Do not build with -cl-denorms-are-zero")->group(kDeveloperGroup);
   cmd->add_flag("--no-cache", no_cache, "Do not use the program binary cache (build from source, store nothing)");
   cmd->add_flag("--verbose", verbose, "Log build options and program cache use on stderr");
-  cmd->add_option("--kernel-dir", kernel_dir, "Read kernels from this directory instead of the embedded copies");
-  cmd->add_option("--cl-options", cl_options,
-                  "Extra OpenCL build options appended to the generated ones (development)");
+  cmd->add_option("--kernel-dir", kernel_dir, "Read kernels from this directory instead of the embedded copies")
+      ->group(kDeveloperGroup);
+  cmd->add_option("--cl-options", cl_options, "Extra OpenCL build options appended to the generated ones")
+      ->group(kDeveloperGroup);
 }
 
 KernelConfig KernelOptions::config() const {
@@ -78,12 +94,16 @@ KernelConfig KernelOptions::config() const {
 
 void LaunchOptions::add(CLI::App* cmd) {
   cmd->add_option("--local", local_size,
-                  "Local work size WxH in work-items (default: the kernel's preferred multiple x 1)");
+                  "Local work size WxH in work-items; unset: the kernel's preferred multiple x 1")
+      ->group(kDeveloperGroup);
   cmd->add_option("--max-launch-ms", max_launch_ms,
-                  "Split the frame so no kernel launch exceeds this many ms (default: 500 on GPUs, none on CPUs; 0 = "
-                  "none)");
-  cmd->add_option("--band-rows", band_rows,
-                  "Fixed tile height in rows (tiles are full-width bands; default: adaptive)");
+                  "Split the frame so no kernel launch exceeds this many ms (0 = no limit); unset: 500 on GPUs, no "
+                  "limit on CPUs")
+      ->default_str("")  // -1 is no value to show
+      ->group(kDeveloperGroup);
+  cmd->add_option("--band-rows", band_rows, "Fixed tile height in rows (tiles are full-width bands; 0 = adaptive)")
+      ->capture_default_str()
+      ->group(kDeveloperGroup);
 }
 
 void LaunchOptions::validate() const {
@@ -132,14 +152,13 @@ void parse_depth_range(const std::string& s, int& from, int& to) {
 }
 
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help) {
-  cmd->add_option("--repeat", repeat, help + " (default " + std::to_string(repeat) + ")")
-      ->check(CLI::Range(1, kMaxRepeat));
+  cmd->add_option("--repeat", repeat, help)->check(CLI::Range(1, kMaxRepeat))->capture_default_str();
 }
 
 void RenderOptions::add(CLI::App* cmd, bool with_engine) {
   cmd->add_option("scene", scene_path, "Scene file (JSON)")->required();
   image.add(cmd);
-  if (with_engine) cmd->add_option("--engine", engine, "opencl (default) or reference");
+  if (with_engine) cmd->add_option("--engine", engine, "opencl or reference")->capture_default_str();
   device.add(cmd, /*several=*/true);
   kernel.add(cmd, /*with_variant=*/true);
   launch.add(cmd);

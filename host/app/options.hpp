@@ -9,11 +9,16 @@
 
 #include "cl/device.hpp"
 #include "render/renderer.hpp"
+#include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
 
 constexpr int kMaxImageEdge = 16384;
+
+// The help group of the low-level knobs (launch geometry, lanes, build
+// options), listed after a command's other options.
+constexpr const char* kDeveloperGroup = "Developer options";
 constexpr long long kMaxImagePixels = 64LL * 1024 * 1024;
 
 // --width, --height and (optionally) --depth and --spp.
@@ -26,8 +31,12 @@ struct ImageOptions {
   // --spp N: N x N samples per pixel, averaged (supersampling), in
   // [1, CLRT_MAX_SPP]; 1 = one ray per pixel, the book's image.
   int spp = 1;
+  // --adaptive T: the book's adaptive supersampling (scene/sampling.hpp);
+  // negative = off.
+  double adaptive = -1;
 
   void add(CLI::App* cmd, bool with_depth = true, bool with_spp = true);
+  Sampling sampling() const { return Sampling(spp, adaptive); }
   void validate() const;
   int effective_depth(const Scene& s) const { return depth == kSceneDepth ? s.recursion_depth : depth; }
 };
@@ -108,5 +117,6 @@ void add_accuracy_command(CLI::App& app);
 void add_stability_command(CLI::App& app);
 void add_generate_command(CLI::App& app);
 void add_scaling_command(CLI::App& app);
+void add_cache_command(CLI::App& app);
 
 }  // namespace clrt

@@ -15,7 +15,7 @@ std::string sweep_csv(const std::vector<SweepRow>& rows) {
   std::ostringstream o;
   o << "device,depth,kernel_ms_median,kernel_ms_min,kernel_ms_max,kernel_ms_mean,kernel_ms_sd,kernel_n,"
        "kernel_time_source,kernel_ms_delta,frame_ms_median,frame_ms_mean,frame_ms_sd,build_warm_ms,upload_ms,"
-       "download_ms,rays_primary,rays_shadow,rays_reflection,rays_total,sphere_tests,mrays_per_s,"
+       "download_ms,rays_primary,rays_shadow,rays_reflection,rays_refraction,rays_total,sphere_tests,mrays_per_s,"
        "ns_per_sphere_test,gflops,reference_ms,speedup_vs_reference,omp_ms_median,opencl_speedup_vs_omp,"
        "err_pixels_differ,err_off_by_gt1,err_max_abs_8bit,err_rmse_8bit,err_hit_flips,err_shadow_flips,"
        "err_nan_inf,change_pixels_differ,change_rmse_8bit,change_max_abs_8bit\n";
@@ -25,12 +25,12 @@ std::string sweep_csv(const std::vector<SweepRow>& rows) {
       << ',' << b.kernel.mean << ',' << b.kernel.sd << ',' << b.kernel.n << ',' << b.kernel_time_source() << ','
       << r.kernel_ms_delta << ',' << b.frame.median << ',' << b.frame.mean << ',' << b.frame.sd << ','
       << b.build_warm.median << ',' << b.upload.median << ',' << b.download.median << ',' << b.rays.primary << ','
-      << b.rays.shadow << ',' << b.rays.reflection << ',' << b.rays.total() << ',' << b.rays.sphere_tests << ','
-      << b.mrays_per_s << ',' << b.ns_per_sphere_test << ',' << b.gflops << ',' << r.reference_ms << ','
-      << r.speedup_vs_reference << ',' << b.omp.median << ',' << b.speedup_vs_omp.median << ',' << r.error.differ << ','
-      << r.error.off_by_gt1 << ',' << r.error.max_abs_8bit << ',' << r.error.rmse_8bit << ',' << r.error.hit_flips
-      << ',' << r.error.shadow_flips << ',' << r.error.nan_inf << ',' << r.change.differ << ',' << r.change.rmse_8bit
-      << ',' << r.change.max_abs_8bit << '\n';
+      << b.rays.shadow << ',' << b.rays.reflection << ',' << b.rays.refraction << ',' << b.rays.total() << ','
+      << b.rays.sphere_tests << ',' << b.mrays_per_s << ',' << b.ns_per_sphere_test << ',' << b.gflops << ','
+      << r.reference_ms << ',' << r.speedup_vs_reference << ',' << b.omp.median << ',' << b.speedup_vs_omp.median << ','
+      << r.error.differ << ',' << r.error.off_by_gt1 << ',' << r.error.max_abs_8bit << ',' << r.error.rmse_8bit << ','
+      << r.error.hit_flips << ',' << r.error.shadow_flips << ',' << r.error.nan_inf << ',' << r.change.differ << ','
+      << r.change.rmse_8bit << ',' << r.change.max_abs_8bit << '\n';
   }
   return o.str();
 }

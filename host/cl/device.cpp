@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "util/error.hpp"
+#include "util/log.hpp"
 
 namespace clrt {
 namespace {
@@ -76,16 +77,20 @@ std::vector<DeviceInfo> list_devices() {
     throw DeviceError(
         "no OpenCL platform found; install an OpenCL driver such as pocl-opencl-icd, or use --engine reference");
   std::vector<DeviceInfo> out;
-  for (auto& p : platforms) {
+  for (size_t platform_index = 0; platform_index < platforms.size(); ++platform_index) {
+    auto& p = platforms[platform_index];
     std::vector<cl::Device> devs;
     try {
       p.getDevices(CL_DEVICE_TYPE_ALL, &devs);
     } catch (const cl::Error&) {
       continue;  // a platform with no devices (CL_DEVICE_NOT_FOUND)
     }
-    for (auto& d : devs) {
+    for (size_t device_index = 0; device_index < devs.size(); ++device_index) {
+      auto& d = devs[device_index];
       DeviceInfo info;
       info.index = static_cast<int>(out.size());
+      info.platform_index = static_cast<int>(platform_index);
+      info.device_index = static_cast<int>(device_index);
       info.platform = p;
       info.device = d;
       info.name = trim(d.getInfo<CL_DEVICE_NAME>());
@@ -116,6 +121,10 @@ size_t default_device(const std::vector<DeviceInfo>& all) {
   return 0;
 }
 
+std::string platform_device_id(const DeviceInfo& d) {
+  return std::to_string(d.platform_index) + ":" + std::to_string(d.device_index);
+}
+
 std::vector<DeviceInfo> select_devices(const std::string& spec) {
   return pick_devices(list_devices(), spec);
 }
@@ -130,17 +139,37 @@ std::vector<DeviceInfo> pick_devices(const std::vector<DeviceInfo>& all, const s
   std::string part;
   while (std::getline(ss, part, ',')) {
     bool found = false;
+    const size_t colon = part.find(':');
     if (all_digits(part)) {
       // Any index longer than 9 digits is out of range (and would overflow stoul).
       if (part.size() <= 9 && std::stoul(part) < all.size()) picked.push_back(all[std::stoul(part)]), found = true;
-    } else {
+    } else if (colon != std::string::npos && all_digits(part.substr(0, colon)) && all_digits(part.substr(colon + 1))) {
       for (auto& d : all) {
-        if (lower(d.name).find(part) != std::string::npos || lower(d.type).find(part) != std::string::npos ||
-            lower(d.platform_name).find(part) != std::string::npos) {
+        if (platform_device_id(d) == part) {
           picked.push_back(d);
           found = true;
           break;
         }
+      }
+    } else {
+      std::vector<const DeviceInfo*> matches;
+      for (auto& d : all)
+        if (lower(d.name).find(part) != std::string::npos || lower(d.type).find(part) != std::string::npos ||
+            lower(d.platform_name).find(part) != std::string::npos)
+          matches.push_back(&d);
+      if (!matches.empty()) {
+        picked.push_back(*matches.front());
+        found = true;
+      }
+      if (matches.size() > 1) {
+        std::string which;
+        for (const DeviceInfo* d : matches)
+          which += (which.empty() ? "" : ", ") + std::to_string(d->index) + " [" + platform_device_id(*d) + "]";
+        const DeviceInfo& first = *matches.front();
+        log_message(LogLevel::Info, "--device " + part + " matches " + std::to_string(matches.size()) + " devices (" +
+                                        which + "); using " + std::to_string(first.index) + " [" +
+                                        platform_device_id(first) + "]: " + first.name + " (" + first.platform_name +
+                                        ")");
       }
     }
     if (!found) {

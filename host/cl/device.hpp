@@ -8,7 +8,9 @@
 namespace clrt {
 
 struct DeviceInfo {
-  int index = 0;  // global index over all platforms, as `clrt devices` shows
+  int index = 0;           // global index over all platforms, as `clrt devices` shows
+  int platform_index = 0;  // the platform's position in the ICD loader's list
+  int device_index = 0;    // the device's position on its platform
   cl::Platform platform;
   cl::Device device;
   std::string name, platform_name, vendor, type, version, c_version, driver;
@@ -37,9 +39,14 @@ std::vector<DeviceInfo> list_devices();
 // the first device.
 size_t default_device(const std::vector<DeviceInfo>& all);
 
+// "P:D": the platform and the device's position on it (`clrt devices`).
+std::string platform_device_id(const DeviceInfo& d);
+
 // Selects devices by SPEC: "" (first GPU, else first device), an index, a
-// comma-separated list of indices, "all", or a case-insensitive substring of
-// the device name, type (cpu/gpu/accelerator) or platform name (first match).
+// "P:D" pair (platform P, its device D), a comma-separated list of these,
+// "all", or a case-insensitive substring of the device name, type
+// (cpu/gpu/accelerator) or platform name (the first match; when several
+// devices match, one line through util/log says which was taken).
 // Unknown SPEC -> UserError listing what exists.
 std::vector<DeviceInfo> select_devices(const std::string& spec);
 // The same choice among `all` (non-empty), e.g. list_devices().

@@ -1,19 +1,25 @@
 // program_cache.cpp - binary cache entries: hashed key, atomic writes, checks.
 #include "cl/program_cache.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
+#include "util/error.hpp"
 #include "util/log.hpp"
 
 namespace clrt {
@@ -22,6 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[8] = {'C', 'L', 'R', 'T', 'B', 'I', 'N', '1'};
+constexpr uint64_t kMaxEntryBytes = 1ull << 30;  // larger files are not entries
 
 uint64_t fnv1a(const void* data, size_t n, uint64_t h = 1469598103934665603ULL) {
   const auto* p = static_cast<const unsigned char*>(data);
@@ -86,11 +93,26 @@ std::string cache_entry_path(const ProgramCacheKey& key) {
 }
 
 bool cache_read_entry(const std::string& path, std::string& key_text, std::vector<unsigned char>& binary) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  const std::string data = ss.str();
+  // A regular file, never through a symbolic link (a FIFO or device named
+  // like an entry would block or never end).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) return false;
+  struct stat st {};
+  std::string data;
+  bool ok = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && uint64_t(st.st_size) <= kMaxEntryBytes;
+  if (ok) {
+    data.resize(size_t(st.st_size));
+    size_t got = 0;
+    while (got < data.size()) {
+      const ssize_t n = ::read(fd, &data[got], data.size() - got);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      got += size_t(n);
+    }
+    ok = got == data.size();
+  }
+  ::close(fd);
+  if (!ok) return false;
   if (data.size() < sizeof kMagic || data.compare(0, sizeof kMagic, kMagic, sizeof kMagic) != 0) return false;
   size_t pos = sizeof kMagic;
   uint64_t klen = 0, blen = 0, sum = 0;
@@ -108,6 +130,8 @@ std::optional<std::vector<unsigned char>> cache_load(const ProgramCacheKey& key)
   std::vector<unsigned char> bin;
   if (path.empty() || !cache_read_entry(path, text, bin)) return std::nullopt;
   if (text != key.text()) return std::nullopt;  // a hash collision or another key
+  // Used: the entry becomes the newest, the last the size limit evicts.
+  ::utimensat(AT_FDCWD, path.c_str(), nullptr, AT_SYMLINK_NOFOLLOW);
   return bin;
 }
 
@@ -146,7 +170,12 @@ bool cache_store(const ProgramCacheKey& key, const std::vector<unsigned char>& b
   std::error_code ec;
   fs::create_directories(program_cache_dir(), ec);
   if (fs::exists(path + ".bad", ec)) return false;  // never again for this key (cache_begin_load)
-  if (cache_write_entry(path, key.text(), binary)) return true;
+  const uint64_t limit = program_cache_limit();
+  if (binary.size() > limit) return false;  // it would be the first to go
+  if (cache_write_entry(path, key.text(), binary)) {
+    cache_evict(program_cache_dir(), limit);
+    return true;
+  }
   if (!warned) log_message(LogLevel::Warning, "cannot write the program cache entry " + path);
   warned = true;
   return false;
@@ -199,6 +228,173 @@ void cache_end_load(const ProgramCacheKey& key, bool ok) {
   std::error_code ec;
   if (!ok) fs::remove(path, ec);
   fs::remove(path + ".loading", ec);
+}
+
+// ---- size limit, info, clear ----------------------------------------------
+
+std::optional<uint64_t> parse_cache_size(const std::string& text) {
+  size_t i = 0;
+  uint64_t n = 0;
+  if (text.empty() || !std::isdigit(static_cast<unsigned char>(text[0]))) return std::nullopt;
+  for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) {
+    if (n > (UINT64_MAX - 9) / 10) return std::nullopt;
+    n = n * 10 + uint64_t(text[i] - '0');
+  }
+  std::string unit;
+  for (; i < text.size(); ++i) unit += char(std::tolower(static_cast<unsigned char>(text[i])));
+  int shift = 0;
+  if (unit.empty() || unit == "b")
+    shift = 0;
+  else if (unit == "k" || unit == "kb" || unit == "kib")
+    shift = 10;
+  else if (unit == "m" || unit == "mb" || unit == "mib")
+    shift = 20;
+  else if (unit == "g" || unit == "gb" || unit == "gib")
+    shift = 30;
+  else
+    return std::nullopt;
+  if (n > (UINT64_MAX >> shift)) return std::nullopt;
+  return n << shift;
+}
+
+uint64_t program_cache_limit(bool strict) {
+  const char* env = std::getenv("CLRT_CACHE_MAX_SIZE");
+  if (!env || !*env) return kDefaultProgramCacheLimit;
+  if (auto n = parse_cache_size(env)) return *n;
+  std::string value(env);
+  const std::string message =
+      "CLRT_CACHE_MAX_SIZE: expected a size in bytes, or with K, M or G (got \"" + value.substr(0, 64) + "\")";
+  if (strict) throw UserError(message);
+  static std::once_flag warned;
+  std::call_once(warned, [&] { log_message(LogLevel::Warning, message + "; using 256M"); });
+  return kDefaultProgramCacheLimit;
+}
+
+bool is_cache_entry_name(const std::string& name) {
+  if (name.size() != 20 || name.compare(16, 4, ".bin") != 0) return false;
+  return std::all_of(name.begin(), name.begin() + 16,
+                     [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+}
+
+namespace {
+
+bool is_bad_marker_name(const std::string& name) {
+  return name.size() == 24 && name.compare(20, 4, ".bad") == 0 && is_cache_entry_name(name.substr(0, 20));
+}
+
+struct DirFile {
+  std::string name;
+  bool entry = false, bad_marker = false;  // a regular file with that name
+  uint64_t size = 0;
+  struct timespec mtime {};
+};
+
+// The directory, opened once: every later step names files relative to it
+// (fstatat, unlinkat), so a directory renamed or replaced meanwhile is not
+// walked into, and no call follows a link inside it.
+class CacheDir {
+ public:
+  explicit CacheDir(const std::string& path) {
+    if (path.empty()) return;
+    fd_ = ::open(path.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  }
+  ~CacheDir() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  CacheDir(const CacheDir&) = delete;
+  CacheDir& operator=(const CacheDir&) = delete;
+  bool open() const { return fd_ >= 0; }
+
+  std::vector<DirFile> files() const {
+    std::vector<DirFile> out;
+    if (fd_ < 0) return out;
+    const int walk = ::dup(fd_);  // closedir closes it
+    if (walk < 0) return out;
+    DIR* d = ::fdopendir(walk);
+    if (!d) {
+      ::close(walk);
+      return out;
+    }
+    ::rewinddir(d);
+    while (const dirent* e = ::readdir(d)) {
+      DirFile f;
+      f.name = e->d_name;
+      if (f.name == "." || f.name == "..") continue;
+      struct stat st {};
+      if (::fstatat(fd_, e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode)) {
+        f.entry = is_cache_entry_name(f.name);
+        f.bad_marker = is_bad_marker_name(f.name);
+        f.size = uint64_t(st.st_size);
+        f.mtime = st.st_mtim;
+      }
+      out.push_back(std::move(f));
+    }
+    ::closedir(d);
+    return out;
+  }
+
+  // unlinkat never follows a link: at worst it removes a link that took an
+  // entry's name meanwhile, itself in the cache's namespace.
+  bool remove(const std::string& name) const { return ::unlinkat(fd_, name.c_str(), 0) == 0; }
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace
+
+ProgramCacheStats cache_stats(const std::string& dir) {
+  ProgramCacheStats s;
+  CacheDir d(dir);
+  s.exists = d.open();
+  for (const auto& f : d.files()) {
+    if (f.entry) {
+      ++s.entries;
+      s.bytes += f.size;
+    } else if (f.bad_marker) {
+      ++s.bad_markers;
+    } else {
+      ++s.other;
+    }
+  }
+  return s;
+}
+
+size_t cache_evict(const std::string& dir, uint64_t limit) {
+  CacheDir d(dir);
+  if (!d.open()) return 0;
+  std::vector<DirFile> entries;
+  uint64_t total = 0;
+  for (auto& f : d.files())
+    if (f.entry) total += f.size, entries.push_back(std::move(f));
+  if (total <= limit) return 0;
+  // Oldest first; the name breaks ties, so concurrent evictions agree.
+  std::sort(entries.begin(), entries.end(), [](const DirFile& a, const DirFile& b) {
+    if (a.mtime.tv_sec != b.mtime.tv_sec) return a.mtime.tv_sec < b.mtime.tv_sec;
+    if (a.mtime.tv_nsec != b.mtime.tv_nsec) return a.mtime.tv_nsec < b.mtime.tv_nsec;
+    return a.name < b.name;
+  });
+  size_t removed = 0;
+  for (const auto& e : entries) {
+    if (total <= limit) break;
+    if (d.remove(e.name)) ++removed;
+    total -= e.size;  // (gone either way: another process may have removed it)
+  }
+  return removed;
+}
+
+ProgramCacheCleared cache_clear(const std::string& dir) {
+  ProgramCacheCleared c;
+  CacheDir d(dir);
+  for (const auto& f : d.files()) {
+    if (f.entry && d.remove(f.name)) {
+      ++c.entries;
+      c.bytes += f.size;
+    } else if (f.bad_marker && d.remove(f.name)) {
+      ++c.bad_markers;
+    }
+  }
+  return c;
 }
 
 }  // namespace clrt

@@ -9,7 +9,15 @@
 // Directory: $CLRT_CACHE_DIR, else $XDG_CACHE_HOME/clrt, else ~/.cache/clrt.
 // Entries are written to a temporary file and renamed into place, so
 // concurrent clrt processes never see a half-written entry.
+//
+// Size: after each store, the oldest entries (by modification time; a load
+// refreshes it) are deleted until the entries total at most the limit,
+// $CLRT_CACHE_MAX_SIZE (bytes, or with a K, M or G suffix: binary units),
+// else 256 MiB. Every file in the directory is untrusted: an entry is a
+// regular file named <16 hex digits>.bin, nothing else is ever deleted, and
+// no symbolic link is followed (a link named like an entry is not one).
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,5 +65,44 @@ bool cache_write_entry(const std::string& path, const std::string& key_text, con
 
 // Path of the entry for `key` (for tests and --verbose).
 std::string cache_entry_path(const ProgramCacheKey& key);
+
+// ---- size limit, `clrt cache info` and `clrt cache clear` ------------------
+
+constexpr uint64_t kDefaultProgramCacheLimit = 256ull << 20;
+
+// "1048576", "512K", "256M", "1G" (K/M/G: 2^10, 2^20, 2^30; also "KiB",
+// "MB", ... case-insensitive) -> bytes; nothing for anything else.
+std::optional<uint64_t> parse_cache_size(const std::string& text);
+
+// The limit in bytes: $CLRT_CACHE_MAX_SIZE, else kDefaultProgramCacheLimit.
+// A value that does not parse throws UserError when `strict`; otherwise it
+// is reported once (a warning) and the default is used.
+uint64_t program_cache_limit(bool strict = false);
+
+// A cache entry's file name: 16 lowercase hex digits and ".bin".
+bool is_cache_entry_name(const std::string& name);
+
+struct ProgramCacheStats {
+  bool exists = false;     // the directory exists
+  size_t entries = 0;      // regular files with an entry's name
+  uint64_t bytes = 0;      // their total size
+  size_t bad_markers = 0;  // ENTRY.bad: keys never cached again
+  size_t other = 0;        // anything else (markers, temp files, links, foreign files)
+};
+
+// What `dir` holds; reads names and lstat()s only.
+ProgramCacheStats cache_stats(const std::string& dir);
+
+// Deletes the oldest entries of `dir` until its entries total at most
+// `limit` bytes; returns how many were deleted. Never throws.
+size_t cache_evict(const std::string& dir, uint64_t limit);
+
+// Deletes every entry of `dir` and every ENTRY.bad marker (nothing else);
+// returns how many entries were deleted and their bytes.
+struct ProgramCacheCleared {
+  size_t entries = 0, bad_markers = 0;
+  uint64_t bytes = 0;
+};
+ProgramCacheCleared cache_clear(const std::string& dir);
 
 }  // namespace clrt

@@ -21,7 +21,7 @@ std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes,
   std::vector<AccuracyRow> rows;
   for (const auto& ns : scenes) {
     const int depth = s.depth >= 0 ? s.depth : ns.scene.recursion_depth;
-    const Image ref = render_reference(ns.scene, s.width, s.height, depth, s.spp);
+    const Image ref = render_reference(ns.scene, s.width, s.height, depth, Sampling(s.spp, s.adaptive));
     const size_t first = rows.size();
     std::vector<std::unique_ptr<Renderer>> cls;  // per row; null = unsupported
     for (Precision p : s.variants) {
@@ -36,7 +36,7 @@ std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes,
         settings.kernel = s.base;
         settings.kernel.precision = p;
         cls.push_back(std::make_unique<Renderer>(std::vector<DeviceInfo>{dev}, settings));
-        cls.back()->prepare(ns.scene, s.width, s.height, depth, s.spp);
+        cls.back()->prepare(ns.scene, s.width, s.height, depth, Sampling(s.spp, s.adaptive));
         row.error = compare_images(cls.back()->render(), ref);  // also the warm-up
       } else {
         cls.push_back(nullptr);

@@ -15,10 +15,11 @@ namespace clrt {
 
 struct AccuracySettings {
   int width = 600, height = 600;
-  int depth = -1;     // -1 = each scene's recursion_depth
-  int spp = 1;        // N x N samples per pixel, the reference's and every variant's
-  int repeat = 7;     // timed launches per variant (after one warm-up launch)
-  KernelConfig base;  // precision is overwritten per variant
+  int depth = -1;        // -1 = each scene's recursion_depth
+  int spp = 1;           // N x N samples per pixel, the reference's and every variant's
+  double adaptive = -1;  // adaptive supersampling's threshold (scene/sampling.hpp); negative: off
+  int repeat = 7;        // timed launches per variant (after one warm-up launch)
+  KernelConfig base;     // precision is overwritten per variant
   std::vector<Precision> variants = all_precisions();
 };
 

@@ -29,6 +29,7 @@ namespace clrt {
 struct BenchSettings {
   int width = 600, height = 600, depth = 3;
   int spp = 1;            // N x N samples per pixel (clrt and the reference; the tracers trace one, see omp/embree)
+  double adaptive = -1;   // adaptive supersampling's threshold (scene/sampling.hpp); negative: off
   int repeat = 5;         // >= 1 (--repeat checks it): timed rounds (clrt, OpenMP, Embree frame) after one warm-up each
   bool reference = true;  // time the scalar double reference (and keep its image)
   bool omp = true;        // time the OpenMP float tracer (one ray per pixel: not run when spp > 1)
@@ -50,6 +51,7 @@ struct BenchResult {
   std::string device, options;
   int width = 0, height = 0, depth = 0, spp = 1, repeat = 0;
   bool rgba8 = false;            // frames (clrt's and the tracers') held as 8-bit RGBA, else float RGB
+  std::string tracers_not_run;   // why the OpenMP/Embree tracers were not run ("" when they were)
   Stats build_cold, build_warm;  // ms per build of every device (the longest, they run in parallel)
   bool build_warm_cached = false;
   Stats upload;                // ms, scene buffers (one per build above)

@@ -31,6 +31,13 @@ Sphere sphere(Vec3 c, double r, Vec3 color, double spec, double refl) {
   s.reflective = refl;
   return s;
 }
+// A transparent sphere (chapter 5).
+Sphere glass(Vec3 c, double r, Vec3 color, double transparency, double index, double refl = 0) {
+  Sphere s = sphere(c, r, color, 500, refl);
+  s.transparency = transparency;
+  s.refractive_index = index;
+  return s;
+}
 Light light(LightType t, double i, Vec3 v = {}) {
   Light l;
   l.type = t;
@@ -87,7 +94,7 @@ struct Builder {
   // Like family(), for scenes made by modifying the demo scene.
   void demo_family(const std::string& fam, const std::vector<double>& values,
                    const std::function<void(Scene&, double)>& modify, const std::function<bool(double)>& stable,
-                   const std::string& note) {
+                   const std::string& note, int depth = 3) {
     family(
         fam, values,
         [&modify](double v) {
@@ -95,7 +102,7 @@ struct Builder {
           modify(s, v);
           return s;
         },
-        stable, note);
+        stable, note, depth);
   }
   // Adds one case per value. `stable(v)`: whether robust must pass it.
   void family(const std::string& fam, const std::vector<double>& values, const std::function<Scene(double)>& make,
@@ -233,6 +240,98 @@ std::vector<StabilityCase> stability_suite() {
         s.lights[1].vec = {0, h, 3};  // top of the red sphere is (0, 0, 3)
       },
       [](double h) { return h >= 1e-4; }, "point light at height h above the red sphere's top");
+
+  // Chapter 5: refraction. The red sphere of the demo made of glass of
+  // index n: n = 1 exactly is the book's plain transparency (equal indices
+  // go straight on in both engines, T = d exactly), n near 1 bends by
+  // little, and large n bends strongly and reflects totally inside.
+  b.demo_family(
+      "refractive index", {1, 1.0001, 1.5, 2.4},
+      [](Scene& s, double n) {
+        s.spheres[0].transparency = 0.9;
+        s.spheres[0].refractive_index = n;
+      },
+      always, "demo with the red sphere transparent (0.9) of refractive index n", 6);
+
+  // Total internal reflection: the camera inside a sphere of glass of index
+  // n, off its centre, looking across a wide viewport, so the angles of
+  // incidence on the inside of the surface sweep through the critical
+  // angle asin(1/n): past it the rays stay inside (a dark, reflective
+  // glass), before it they leave toward three spheres outside. Only rays
+  // within rounding of the critical angle itself can be decided either way.
+  b.family(
+      "critical angle index", {1.2, 1.5, 2.4},
+      [](double n) {
+        Scene s;
+        s.camera.position = {3, 0, 0};
+        s.camera.viewport_w = s.camera.viewport_h = 3;
+        s.background = {40, 60, 90};
+        s.spheres = {glass({0, 0, 0}, 5, {20, 20, 20}, 0.95, n, 0.05), sphere({0, 0, 12}, 3, {255, 60, 40}, 100, 0.2),
+                     sphere({-9, 2, 6}, 2, {40, 200, 60}, 10, 0), sphere({0, -1006, 0}, 1000, {230, 220, 200}, -1, 0)};
+        s.lights = {light(LightType::Ambient, 0.3), light(LightType::Point, 0.5, {2, 1, 0}),
+                    light(LightType::Directional, 0.2, {1, 4, -4})};
+        return s;
+      },
+      always, "camera inside a glass sphere of index n: incidence sweeps through the critical angle", 6);
+
+  // Nested media: a glass sphere holding a water sphere holding an air
+  // bubble (index 1), all transparent, so rays pass 1 -> 1.5 -> 1.33 -> 1
+  // and back; at depth N, with 2^N rays per pixel at most.
+  for (int depth : {4, 8}) {
+    b.family(
+        "nested transparent depth", {double(depth)},
+        [](double) {
+          Scene s = demo();
+          s.spheres[0] = glass({0, -0.2, 3}, 0.8, {255, 255, 255}, 0.9, 1.5, 0.05);
+          s.spheres.push_back(glass({0, -0.2, 3}, 0.5, {200, 230, 255}, 0.9, 1.33, 0.05));
+          s.spheres.push_back(glass({0.1, -0.15, 3}, 0.2, {255, 255, 255}, 1, 1, 0));
+          return s;
+        },
+        always, "glass (1.5) around water (1.33) around an air bubble (1) at depth N", depth);
+  }
+
+  // Chapter 5's other primitives. A plane floor seen from 0.5 above,
+  // through a viewport narrowed to width v around the horizon: the rays of
+  // the rows below it meet the plane at angles down to v / 240 and distances
+  // up to 120 / v (the plane's distance dot(n, P0 - O) / dot(n, D) divides
+  // by a tiny dot(n, D)); the reflected sky and shadows go with them.
+  b.demo_family(
+      "plane horizon viewport", {1e-1, 1e-2, 1e-3},
+      [](Scene& s, double v) {
+        s.spheres.pop_back();  // the floor sphere, replaced by a plane at y = -1
+        Plane floor;
+        floor.point = {0, -1, 0};
+        floor.normal = {0, 1, 0};
+        floor.material = Material{{255, 255, 0}, 1000, 0.5};
+        s.planes.push_back(floor);
+        s.camera.position = {0, -0.5, 0};
+        s.camera.viewport_w = s.camera.viewport_h = v;
+      },
+      always, "demo with a plane floor 0.5 below the camera, seen through a viewport v wide at its horizon");
+
+  // Rays through a mesh's shared edges and vertices: a wall of triangles in
+  // front of the camera whose vertices and diagonals lie exactly where the
+  // 160 x 120 image's rays meet it (a grid of squares `cell` pixels wide,
+  // each split along a diagonal), lit by a point light so the faces'
+  // shading differs. A watertight test never lets a ray through (a leak
+  // shows the magenta background).
+  b.family(
+      "mesh edge cell", {1, 2, 8},
+      [](double cell_pixels) {
+        const int cell = int(cell_pixels), width = 160, height = 120;
+        Scene s;
+        s.background = {255, 0, 255};
+        s.lights = {light(LightType::Ambient, 0.3), light(LightType::Point, 0.7, {1, 2, 0})};
+        const Material m{{100, 200, 100}, 50, 0};
+        auto at = [&](int x, int y) { return Vec3{5.0 * x / width, 5.0 * y / height, 5.0}; };
+        for (int x = -width / 2 - cell; x < width / 2 + cell; x += cell)
+          for (int y = -height / 2 - cell; y < height / 2 + cell; y += cell) {
+            s.triangles.push_back(Triangle{at(x, y), at(x + cell, y), at(x + cell, y + cell), m});
+            s.triangles.push_back(Triangle{at(x, y), at(x + cell, y + cell), at(x, y + cell), m});
+          }
+        return s;
+      },
+      always, "a wall of triangles whose edges and vertices lie on the 160x120 image's rays", 0);
 
   b.demo_family(
       "zero lights", {0}, [](Scene& s, double) { s.lights.clear(); }, always, "demo without lights (black spheres)");

@@ -14,6 +14,11 @@
 #ifndef CLRT_IMAGEIO_BUILD_DIR
 #define CLRT_IMAGEIO_BUILD_DIR ""
 #endif
+// The module's install directory relative to the executable's (CMakeLists.txt,
+// "install"): an installed tree finds it wherever its prefix is moved.
+#ifndef CLRT_IMAGEIO_FROM_BIN
+#define CLRT_IMAGEIO_FROM_BIN ""
+#endif
 
 namespace clrt {
 namespace imageio {
@@ -73,6 +78,9 @@ std::vector<std::string> module_candidates() {
   std::vector<std::string> out;
   const std::string exe_dir = executable_dir();
   if (!exe_dir.empty()) out.push_back(exe_dir + "/" + kFileName);
+  const std::string from_bin = CLRT_IMAGEIO_FROM_BIN;
+  if (!exe_dir.empty() && !from_bin.empty())
+    out.push_back((std::filesystem::path(exe_dir) / from_bin / kFileName).lexically_normal().string());
   const std::string build_dir = CLRT_IMAGEIO_BUILD_DIR;
   if (!build_dir.empty() && build_dir != exe_dir) out.push_back(build_dir + "/" + kFileName);
   return out;

@@ -96,7 +96,9 @@ void check_module_present();
 bool module_loaded();
 // Where the module is looked for, in order: $CLRT_IMAGEIO_MODULE (a path;
 // when set, the only place), beside the running executable
-// (/proc/self/exe), and the build directory this binary was built in.
+// (/proc/self/exe), where `cmake --install` puts it relative to the
+// executable (CLRT_IMAGEIO_FROM_BIN, e.g. ../lib/clrt), and the build
+// directory this binary was built in.
 std::vector<std::string> module_candidates();
 
 }  // namespace imageio

@@ -2,6 +2,7 @@
 // Names follow the book (TraceRay, ClosestIntersection, ComputeLighting...).
 #include "reference/reference.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,9 +12,14 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// A hit: the sphere, or (chapter 5's other primitives) the plane or triangle,
+// with the surface it shows.
 struct Hit {
   const Sphere* sphere = nullptr;
+  const Plane* plane = nullptr;
+  const Triangle* triangle = nullptr;
   double t = kInf;
+  bool found() const { return sphere || plane || triangle; }
 };
 
 class Tracer {
@@ -35,15 +41,67 @@ class Tracer {
     t2 = (-b - std::sqrt(discriminant)) / (2 * a);
   }
 
+  // A plane: dot(N, O + tD - P0) = 0 (inf when the ray runs parallel to it).
+  static double IntersectRayPlane(Vec3 O, Vec3 D, const Plane& plane) {
+    double along = dot(plane.normal, D);
+    if (along == 0) return kInf;
+    return dot(plane.normal, plane.point - O) / along;
+  }
+
+  // A triangle, watertight (Woop, Benthin and Wald, JCGT 2013), in double:
+  // the vertices in the ray's frame, sheared so that the ray runs along +z
+  // from the origin; the signs of the three 2-D edge functions decide.
+  // Zero edge functions count as inside (rays through an edge or vertex hit
+  // every face there); inf for a miss.
+  static double IntersectRayTriangle(Vec3 O, Vec3 D, const Triangle& tri) {
+    const double d[3] = {D.x, D.y, D.z};
+    int kz = 0;
+    if (std::fabs(d[1]) > std::fabs(d[kz])) kz = 1;
+    if (std::fabs(d[2]) > std::fabs(d[kz])) kz = 2;
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if (d[kz] < 0) std::swap(kx, ky);
+    const double sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1.0 / d[kz];
+    const Vec3 a3 = tri.v0 - O, b3 = tri.v1 - O, c3 = tri.v2 - O;
+    const double a[3] = {a3.x, a3.y, a3.z}, b[3] = {b3.x, b3.y, b3.z}, c[3] = {c3.x, c3.y, c3.z};
+    const double ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
+    const double bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
+    const double cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
+    // (products rounded one by one: -ffp-contract=off for this file, see
+    // CMakeLists.txt, so a shared edge's function is exactly negated)
+    const double u = cx * by - cy * bx;
+    const double v = ax * cy - ay * cx;
+    const double w = bx * ay - by * ax;
+    if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return kInf;
+    const double det = u + v + w;
+    if (det == 0) return kInf;
+    return (u * sz * a[kz] + v * sz * b[kz] + w * sz * c[kz]) / det;
+  }
+
   Hit ClosestIntersection(Vec3 O, Vec3 D, double t_min, double t_max) const {
     Hit h;
     for (const Sphere& sphere : s_.spheres) {
       double t1, t2;
       IntersectRaySphere(O, D, sphere, t1, t2);
-      if (t1 < h.t && t_min < t1 && t1 < t_max) h = {&sphere, t1};
-      if (t2 < h.t && t_min < t2 && t2 < t_max) h = {&sphere, t2};
+      if (t1 < h.t && t_min < t1 && t1 < t_max) h = {&sphere, nullptr, nullptr, t1};
+      if (t2 < h.t && t_min < t2 && t2 < t_max) h = {&sphere, nullptr, nullptr, t2};
+    }
+    for (const Plane& plane : s_.planes) {
+      double t = IntersectRayPlane(O, D, plane);
+      if (t < h.t && t_min < t && t < t_max) h = {nullptr, &plane, nullptr, t};
+    }
+    for (const Triangle& tri : s_.triangles) {
+      double t = IntersectRayTriangle(O, D, tri);
+      if (t < h.t && t_min < t && t < t_max) h = {nullptr, nullptr, &tri, t};
     }
     return h;
+  }
+
+  // The hit's id over all primitives: spheres, then planes, then triangles
+  // (the kernel numbers them the same way; compare's hit classes).
+  int32_t HitId(const Hit& h) const {
+    if (h.sphere) return int32_t(h.sphere - s_.spheres.data());
+    if (h.plane) return int32_t(s_.spheres.size() + size_t(h.plane - s_.planes.data()));
+    return int32_t(s_.spheres.size() + s_.planes.size() + size_t(h.triangle - s_.triangles.data()));
   }
 
   static Vec3 ReflectRay(Vec3 R, Vec3 N) { return 2 * dot(N, R) * N - R; }
@@ -68,7 +126,7 @@ class Tracer {
         t_max = kInf;
       }
       // Shadow check.
-      if (ClosestIntersection(P, L, s_.epsilon, t_max).sphere) {
+      if (ClosestIntersection(P, L, s_.epsilon, t_max).found()) {
         if (shadowed && li < 32) *shadowed |= int32_t(1u << li);
         continue;
       }
@@ -85,20 +143,110 @@ class Tracer {
     return i;
   }
 
+  // Chapter 5's refraction. The medium a ray travels in is remembered by the
+  // ray (`medium`, a refractive index): camera rays start in
+  // CameraMedium(); a ray entering a sphere (D.N <= 0, N the outward
+  // normal) passes into the sphere's index, one leaving it into
+  // MediumOutside(sphere). Snell's law for the unit direction d = D/|D|:
+  // with cos_i = |N.d| and the normal N' turned against d, eta = n1 / n2,
+  // k = 1 - eta^2 (1 - cos_i^2); k < 0 is total internal reflection (returns
+  // false), else T = eta d + (eta cos_i - sqrt(k)) N'. Equal indices go
+  // straight on (T = d), exactly.
+  static bool RefractRay(Vec3 D, Vec3 N, double n1, double n2, Vec3& T) {
+    Vec3 d = (1.0 / length(D)) * D;
+    double cos_i = -dot(N, d);
+    if (cos_i < 0) {
+      cos_i = -cos_i;
+      N = -1.0 * N;
+    }
+    if (n1 == n2) {
+      T = d;
+      return true;
+    }
+    double eta = n1 / n2;
+    double k = 1 - eta * eta * (1 - cos_i * cos_i);
+    if (k < 0) return false;
+    T = eta * d + (eta * cos_i - std::sqrt(k)) * N;
+    return true;
+  }
+
+  // The medium around a sphere: the refractive index of the smallest
+  // transparent sphere that contains it whole (|C_o - C| + r < r_o; ties:
+  // the first in the scene), else 1 (air). Partly overlapping transparent
+  // spheres are not nested: each sees air outside.
+  double MediumOutside(const Sphere& sphere) const {
+    const Sphere* around = nullptr;
+    for (const Sphere& o : s_.spheres) {
+      if (&o == &sphere || o.transparency <= 0) continue;
+      if (length(o.center - sphere.center) + sphere.radius < o.radius && (!around || o.radius < around->radius))
+        around = &o;
+    }
+    return around ? around->refractive_index : 1.0;
+  }
+
+  // The medium the camera is in: the index of the smallest transparent sphere
+  // around the camera's position (|P - C_o| < r_o), else 1.
+  double CameraMedium() const {
+    const Sphere* around = nullptr;
+    for (const Sphere& o : s_.spheres) {
+      if (o.transparency <= 0) continue;
+      if (length(s_.camera.position - o.center) < o.radius && (!around || o.radius < around->radius)) around = &o;
+    }
+    return around ? around->refractive_index : 1.0;
+  }
+
   // shadowed/hit are filled for the primary ray only (classification output).
-  Vec3 TraceRay(Vec3 O, Vec3 D, double t_min, double t_max, int depth, int32_t* hit, int32_t* shadowed) const {
+  //
+  // Transparency (chapter 5) extends the book's blend: of the light that is
+  // not reflected (1 - r), a share t passes through the surface, so
+  //   colour = (1 - r) ((1 - t) local + t refracted) + r reflected,
+  // where total internal reflection sends the refracted share along the
+  // reflected ray. Shadow rays stay the book's: a transparent sphere blocks
+  // light like any other. With t = 0 this is the book's line, exactly.
+  Vec3 TraceRay(Vec3 O, Vec3 D, double t_min, double t_max, int depth, double medium, int32_t* hit,
+                int32_t* shadowed) const {
     Hit h = ClosestIntersection(O, D, t_min, t_max);
-    if (!h.sphere) return s_.background;
-    if (hit) *hit = int32_t(h.sphere - s_.spheres.data());
+    if (!h.found()) return s_.background;
+    if (hit) *hit = HitId(h);
     Vec3 P = O + h.t * D;
+    if (!h.sphere) return FlatColor(h, P, D, depth, medium, shadowed);
     Vec3 N = P - h.sphere->center;
     N = (1.0 / length(N)) * N;
     Vec3 V = -1.0 * D;
     Vec3 local_color = ComputeLighting(P, N, V, h.sphere->specular, shadowed) * h.sphere->color;
     double r = h.sphere->reflective;
+    double t = h.sphere->transparency;
+    if (depth <= 0 || (r <= 0 && t <= 0)) return local_color;
+    Vec3 R = ReflectRay(V, N);
+    if (t <= 0) {
+      Vec3 reflected_color = TraceRay(P, R, s_.epsilon, kInf, depth - 1, medium, nullptr, nullptr);
+      return (1 - r) * local_color + r * reflected_color;
+    }
+    bool entering = dot(D, N) <= 0;
+    double n2 = entering ? h.sphere->refractive_index : MediumOutside(*h.sphere);
+    Vec3 T;
+    bool refracts = RefractRay(D, N, medium, n2, T);
+    Vec3 reflected_color{0, 0, 0};
+    if (r > 0 || !refracts) reflected_color = TraceRay(P, R, s_.epsilon, kInf, depth - 1, medium, nullptr, nullptr);
+    Vec3 refracted_color =
+        refracts ? TraceRay(P, T, s_.epsilon, kInf, depth - 1, n2, nullptr, nullptr) : reflected_color;
+    return (1 - r) * ((1 - t) * local_color + t * refracted_color) + r * reflected_color;
+  }
+
+  // A plane or triangle: opaque, two-sided, flat shaded. Its normal is the
+  // plane's, or the triangle's (v1 - v0) x (v2 - v0), turned against the ray;
+  // then the book's shading and reflection as for a sphere.
+  Vec3 FlatColor(const Hit& h, Vec3 P, Vec3 D, int depth, double medium, int32_t* shadowed) const {
+    const Material& m = h.plane ? h.plane->material : h.triangle->material;
+    Vec3 N = h.plane ? h.plane->normal : cross(h.triangle->v1 - h.triangle->v0, h.triangle->v2 - h.triangle->v0);
+    if (dot(N, D) > 0) N = -1.0 * N;
+    N = (1.0 / length(N)) * N;
+    Vec3 V = -1.0 * D;
+    Vec3 local_color = ComputeLighting(P, N, V, m.specular, shadowed) * m.color;
+    double r = m.reflective;
     if (depth <= 0 || r <= 0) return local_color;
     Vec3 R = ReflectRay(V, N);
-    Vec3 reflected_color = TraceRay(P, R, s_.epsilon, kInf, depth - 1, nullptr, nullptr);
+    Vec3 reflected_color = TraceRay(P, R, s_.epsilon, kInf, depth - 1, medium, nullptr, nullptr);
     return (1 - r) * local_color + r * reflected_color;
   }
 
@@ -108,13 +256,14 @@ class Tracer {
 
 }  // namespace
 
-Image render_reference(const Scene& scene, int width, int height, int depth, int spp) {
-  if (spp < 1) throw std::invalid_argument("render_reference: spp must be >= 1");
+Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling) {
+  const int n = sampling.spp;
+  if (n < 1) throw std::invalid_argument("render_reference: spp must be >= 1");
   Image img(width, height);
   Tracer tracer(scene);
   const Camera& cam = scene.camera;
+  const double camera_medium = tracer.CameraMedium();
   const auto& m = cam.rotation;
-  const int n = spp;
   for (int x = -width / 2; x < width - width / 2; ++x) {
     for (int y = height / 2 - height; y < height / 2; ++y) {  // row in [0, H)
       int col = width / 2 + x;
@@ -122,21 +271,49 @@ Image render_reference(const Scene& scene, int width, int height, int depth, int
       size_t p = size_t(row) * width + col;
       // Supersampling: the N x N sub-pixel points (x + o_i, y + o_j),
       // o_k = (k + 0.5) / N - 0.5; N = 1 is the point (x, y) itself.
-      Vec3 sum{0, 0, 0};
-      for (int s = 0; s < n * n; ++s) {
+      // Sample s's colour; its primary hit goes to *hit_id.
+      auto sample = [&](int s, int32_t* hit_id, int32_t* shadowed) {
         const double ox = ((s % n) + 0.5) / n - 0.5, oy = ((s / n) + 0.5) / n - 0.5;
         // CanvasToViewport, then the camera rotation.
         Vec3 d{(x + ox) * cam.viewport_w / width, (y + oy) * cam.viewport_h / height, cam.projection_plane_d};
         Vec3 D{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
                m[6] * d.x + m[7] * d.y + m[8] * d.z};
-        // The classification is the first sample's.
-        const bool first = s == 0;
-        Vec3 c = tracer.TraceRay(cam.position, D, 1, kInf, depth, first ? &img.hit[p] : nullptr,
-                                 first ? &img.shadowed[p] : nullptr);
-        sum = first ? c : sum + c;
+        return tracer.TraceRay(cam.position, D, 1, kInf, depth, camera_medium, hit_id, shadowed);
+      };
+      // The classification is the first sample's.
+      Vec3 sum{0, 0, 0};
+      int traced = 0;
+      if (sampling.adaptive()) {
+        // The four corners of the grid; sample 0 first.
+        const int corners[4] = {0, n - 1, n * (n - 1), n * n - 1};
+        int32_t hits[4] = {-1, -1, -1, -1};
+        Vec3 c[4];
+        for (int k = 0; k < 4; ++k) c[k] = sample(corners[k], &hits[k], k == 0 ? &img.shadowed[p] : nullptr);
+        img.hit[p] = hits[0];
+        bool flat = hits[1] == hits[0] && hits[2] == hits[0] && hits[3] == hits[0];
+        for (double Vec3::*channel : {&Vec3::x, &Vec3::y, &Vec3::z}) {
+          const double lo = std::min({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
+          const double hi = std::max({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
+          flat = flat && hi - lo <= sampling.adaptive_threshold;
+        }
+        sum = c[0] + c[1] + c[2] + c[3];
+        traced = 4;
+        if (!flat) {
+          for (int s = 0; s < n * n; ++s)
+            if (s != corners[0] && s != corners[1] && s != corners[2] && s != corners[3])
+              sum = sum + sample(s, nullptr, nullptr);
+          traced = n * n;
+        }
+      } else {
+        for (int s = 0; s < n * n; ++s) {
+          const bool first = s == 0;
+          Vec3 c = sample(s, first ? &img.hit[p] : nullptr, first ? &img.shadowed[p] : nullptr);
+          sum = first ? c : sum + c;
+        }
+        traced = n * n;
       }
       // The mean of the samples (for N = 1, the one sample's colour exactly).
-      const double samples = double(n) * n;
+      const double samples = double(traced);
       const Vec3 c{sum.x / samples, sum.y / samples, sum.z / samples};
       img.rgb[p * 3 + 0] = c.x;
       img.rgb[p * 3 + 1] = c.y;

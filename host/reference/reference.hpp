@@ -3,6 +3,7 @@
 // chapters 2-5, and its web demo). Deliberately independent of the kernel.
 #pragma once
 #include "image/image.hpp"
+#include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
@@ -18,6 +19,22 @@ namespace clrt {
 // (x + o_0, y + o_0). N = 1 is the book's one ray through (x, y), bit for
 // bit. The kernel states the same rule (kernels/trace.cl); the tests check
 // that the two agree.
-Image render_reference(const Scene& scene, int width, int height, int depth, int spp = 1);
+//
+// Transparency and refraction (chapter 5; Sphere::transparency,
+// Sphere::refractive_index): a hit blends its local colour, the reflected
+// colour and the refracted one as
+//   (1 - r) ((1 - t) local + t refracted) + r reflected,
+// both children traced with depth - 1 (the book's recursion, now a binary
+// tree); the ray's medium, Snell's law, total internal reflection and the
+// medium around nested spheres are stated in reference.cpp (RefractRay,
+// MediumOutside, CameraMedium). Shadow rays are the book's: transparent
+// spheres block light like opaque ones.
+//
+// Adaptive supersampling (sampling.adaptive(), scene/sampling.hpp): the
+// four corner samples of the grid first (s = 0, N - 1, N (N - 1), N^2 - 1);
+// the pixel is their mean when they hit the same primitive (or all miss)
+// and each channel's largest minus smallest value among them is at most T;
+// otherwise the mean of all N^2 samples.
+Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling = {});
 
 }  // namespace clrt

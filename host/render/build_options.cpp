@@ -58,6 +58,12 @@ int kernel_lanes(const KernelConfig& cfg) {
   return cfg.lanes;
 }
 
+int pending_depth_bound(int depth) {
+  int bound = 4;
+  while (bound < depth && bound < CLRT_MAX_DEPTH) bound *= 2;
+  return std::min(bound, CLRT_MAX_DEPTH);
+}
+
 namespace {
 
 std::string define(const std::string& name, int value) {
@@ -82,6 +88,9 @@ void add_specialization(const KernelFeatures& features, std::vector<std::string>
   options.push_back(define("CLRT_HAS_DIRECTIONAL", features.has_directional));
   options.push_back(define("CLRT_HAS_SPECULAR", features.has_specular));
   options.push_back(define("CLRT_HAS_REFLECTIVE", features.traces_reflections()));
+  options.push_back(define("CLRT_HAS_TRANSPARENT", features.traces_refractions()));
+  options.push_back(define("CLRT_HAS_PLANES", features.plane_count > 0));
+  options.push_back(define("CLRT_HAS_TRIANGLES", features.triangle_count > 0));
   // Constant counts (and so unrolled loops and per-light types) only for
   // small scenes: the unrolled code, and with it the build time, grows with
   // every sphere and light (docs/performance.md, "Bounded specialization").
@@ -129,8 +138,15 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
   if (cfg.output.classes) options.push_back("-DCLRT_OUT_CLASSES");
   if (int lanes = kernel_lanes(cfg); lanes > 1) options.push_back(define("CLRT_LANES", lanes));
   if (int rows = packet_rows(cfg); rows > 1) options.push_back(define("CLRT_PACKET_ROWS", rows));
-  if (uses_bvh(cfg.accel, features.sphere_count, cfg.precision)) options.push_back("-DCLRT_BVH");
+  if (uses_bvh(cfg.accel, features.sphere_count + features.triangle_count, cfg.precision))
+    options.push_back("-DCLRT_BVH");
   if (cfg.specialize) add_specialization(features, options);
+  // The tree walk's pending rays take a slot per level (trace.cl): a scene
+  // that refracts gets as many as its depth class needs, not CLRT_MAX_DEPTH
+  // (65 slots of 40 bytes per lane; 16 lanes would take 41 KiB per
+  // work-item). Depths share a program within a class (a sweep over 0-10
+  // builds three).
+  if (features.traces_refractions()) options.push_back(define("CLRT_DEPTH_BOUND", pending_depth_bound(features.depth)));
   if (cfg.specialize && cfg.precision == Precision::Robust) add_compensation(features, options);
   if (!cfg.extra_options.empty()) options.push_back(cfg.extra_options);
   return options;

@@ -48,6 +48,11 @@ int packet_rows(const KernelConfig& cfg);
 // docs/performance.md.
 int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev);
 
+// The slots of the tree walk's pending rays (trace.cl) for a scene that
+// refracts at recursion depth `depth`: the smallest of 4, 8, 16, 32, 64 that
+// is >= depth (-DCLRT_DEPTH_BOUND; one program per class of depths).
+int pending_depth_bound(int depth);
+
 // The median, over the spheres in front of the camera, of a sphere's
 // diameter on the image in pixels (infinity without such spheres).
 double median_sphere_pixels(const Scene& scene, int width);

@@ -35,8 +35,12 @@ std::string accel_name(Accel accel) {
   return "auto";  // unreachable: every Accel is listed above
 }
 
-bool uses_bvh(Accel accel, size_t sphere_count, Precision precision) {
-  if (accel == Accel::Auto) return sphere_count >= kBvhMinSpheres && precision != Precision::Naive;
+size_t bvh_primitive_count(const Scene& scene) {
+  return scene.spheres.size() + scene.triangles.size();
+}
+
+bool uses_bvh(Accel accel, size_t primitive_count, Precision precision) {
+  if (accel == Accel::Auto) return primitive_count >= kBvhMinSpheres && precision != Precision::Naive;
   return accel == Accel::Bvh;
 }
 
@@ -250,6 +254,9 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
   if (scene.spheres.size() > size_t(CLRT_PRIMITIVE_INDEX_MASK))
     throw UserError("scene has " + std::to_string(scene.spheres.size()) + " spheres; the hierarchy holds at most " +
                     std::to_string(CLRT_PRIMITIVE_INDEX_MASK));
+  if (scene.triangles.size() > size_t(CLRT_PRIMITIVE_INDEX_MASK))
+    throw UserError("scene has " + std::to_string(scene.triangles.size()) + " triangles; the hierarchy holds at most " +
+                    std::to_string(CLRT_PRIMITIVE_INDEX_MASK));
   // The scene's extent, camera included: the distance scale of every ray.
   const Vec3 eye = scene.camera.position - origin;
   double extent = std::max({std::fabs(eye.x), std::fabs(eye.y), std::fabs(eye.z)});
@@ -257,10 +264,15 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
     const Vec3 c = s.center - origin;
     extent = std::max({extent, std::fabs(c.x) + s.radius, std::fabs(c.y) + s.radius, std::fabs(c.z) + s.radius});
   }
+  for (const Triangle& t : scene.triangles)
+    for (const Vec3& v : {t.v0, t.v1, t.v2}) {
+      const Vec3 c = v - origin;
+      extent = std::max({extent, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
+    }
   Bvh bvh;
   const int padding_exponent = precision == Precision::Fp64 ? -40 : precision == Precision::Fast ? -12 : -16;
   bvh.padding = std::ldexp(extent, padding_exponent);
-  std::vector<Item> items(scene.spheres.size());
+  std::vector<Item> items(scene.spheres.size() + scene.triangles.size());
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const Sphere& s = scene.spheres[i];
     const Vec3 relative = s.center - origin;  // as pack_scene() computes it
@@ -276,6 +288,30 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
     items[i].centroid = c;
     items[i].entry =
         static_cast<clrt_i32>(CLRT_PRIMITIVE_SPHERE << CLRT_PRIMITIVE_KIND_SHIFT) | static_cast<clrt_i32>(i);
+  }
+  // Triangles: the box of the vertices as the kernel sees them (float hi
+  // parts, or the double for fp64), padded like a sphere's: the watertight
+  // test reports a hit only for rays through the triangle or within its
+  // edge functions' rounding of it.
+  for (size_t k = 0; k < scene.triangles.size(); ++k) {
+    const Triangle& t = scene.triangles[k];
+    Item& item = items[scene.spheres.size() + k];
+    std::array<double, 3> sum{0, 0, 0};
+    for (int a = 0; a < 3; ++a) {
+      item.box.lower[a] = kInfinity;
+      item.box.upper[a] = -kInfinity;
+    }
+    for (const Vec3& vertex : {t.v0, t.v1, t.v2}) {
+      const Vec3 relative = vertex - origin;
+      const std::array<double, 3> c{relative.x, relative.y, relative.z};
+      for (int a = 0; a < 3; ++a) {
+        item.box.lower[a] = std::min(item.box.lower[a], std::nextafter(c[a] - bvh.padding, -kInfinity));
+        item.box.upper[a] = std::max(item.box.upper[a], std::nextafter(c[a] + bvh.padding, kInfinity));
+        sum[a] += c[a];
+      }
+    }
+    item.centroid = {sum[0] / 3, sum[1] / 3, sum[2] / 3};
+    item.entry = static_cast<clrt_i32>(CLRT_PRIMITIVE_TRIANGLE << CLRT_PRIMITIVE_KIND_SHIFT) | static_cast<clrt_i32>(k);
   }
   bvh.nodes.reserve(2 * items.size() + 1);
   bvh.nodes.resize(1);

@@ -37,7 +37,10 @@ std::string accel_name(Accel accel);
 // Auto uses the hierarchy from this many spheres on: below it testing every
 // sphere is faster (measured, docs/performance.md "BVH").
 constexpr size_t kBvhMinSpheres = 32;
-bool uses_bvh(Accel accel, size_t sphere_count, Precision precision);
+// (the count: spheres and triangles, the primitives the hierarchy holds;
+// planes are unbounded and always tested, bvh_primitive_count())
+bool uses_bvh(Accel accel, size_t primitive_count, Precision precision);
+size_t bvh_primitive_count(const Scene& scene);
 
 constexpr int kBvhLeafSize = 4;  // a leaf of more only where no split pays (or at the depth limit)
 constexpr int kBvhBins = 16;     // SAH candidates per axis
@@ -50,7 +53,8 @@ struct Bvh {
   size_t bytes() const { return nodes.size() * sizeof(clrt_bvh_node) + primitives.size() * sizeof(clrt_i32); }
 };
 
-// The hierarchy of `scene`'s spheres (empty scene: one empty leaf), in
+// The hierarchy of `scene`'s spheres and triangles (empty scene: one empty
+// leaf; planes are never in it), in
 // coordinates relative to `origin`, as the kernel sees them
 // (render/scene_buffers.hpp: packing_origin()). Large subtrees are built on
 // up to `threads` threads (0: one per hardware thread); the result is the

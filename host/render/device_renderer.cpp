@@ -38,7 +38,7 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
   source_ = load_kernel_source("trace.cl", config_.kernel_dir);
 }
 
-void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth, int spp, const Bvh* bvh) {
+void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth, Sampling sampling, const Bvh* bvh) {
   if (requested_lanes_ == 0) {
     KernelConfig requested = config_;
     requested.lanes = 0;
@@ -67,11 +67,11 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   }
   check_local_size();
   auto t0 = std::chrono::steady_clock::now();
-  SceneData data = pack_scene(scene, config_.precision, width, height, depth, spp);
+  SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling);
   params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
   spheres_ = upload(context_, queue_, data.spheres);
   lights_ = upload(context_, queue_, data.lights);
-  if (uses_bvh(config_.accel, scene.spheres.size(), config_.precision) && !bvh)
+  if (uses_bvh(config_.accel, bvh_primitive_count(scene), config_.precision) && !bvh)
     throw std::logic_error("BVH build without its hierarchy");
   // (one-element stand-ins when the kernel does not walk a hierarchy; both
   // branches lvalues, so the hierarchy is uploaded without a copy)
@@ -79,6 +79,9 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   const std::vector<clrt_i32> no_primitives;
   nodes_ = upload(context_, queue_, bvh ? bvh->nodes : no_nodes);
   primitives_ = upload(context_, queue_, bvh ? bvh->primitives : no_primitives);
+  planes_ = upload(context_, queue_, data.planes);
+  triangles_ = upload(context_, queue_, data.triangles);
+  materials_ = upload(context_, queue_, data.materials);
   timings_.upload_ms = ms_since(t0);
   width_ = width;
   height_ = height;
@@ -164,6 +167,9 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   kernel_.setArg(9, cl_int(h));
   kernel_.setArg(10, nodes_);
   kernel_.setArg(11, primitives_);
+  kernel_.setArg(12, planes_);
+  kernel_.setArg(13, triangles_);
+  kernel_.setArg(14, materials_);
   // Each work-item shades a block of kernel_lanes(config_) pixels,
   // packet_rows(config_) of them high.
   const size_t rows = size_t(packet_rows(config_)), cols = size_t(kernel_lanes(config_)) / rows;
@@ -269,7 +275,7 @@ void DeviceRenderer::store_tile(const PendingTile& tile, Image& dst) {
   if (counts)
     for (size_t i = 0; i < n; ++i)  // the kernel counts in 32-bit words; they wrap past 2^31 as unsigned
       counts_ += RayCounts{uint32_t(counts[i].primary), uint32_t(counts[i].shadow), uint32_t(counts[i].reflection),
-                           uint32_t(counts[i].sphere_tests)};
+                           uint32_t(counts[i].sphere_tests), uint32_t(counts[i].refraction)};
   if (colour && rgba8) {
     const auto* bytes = static_cast<const uint8_t*>(colour);
     if (x0 == 0 && w == dst.width)  // a band of whole rows: one contiguous run of the image

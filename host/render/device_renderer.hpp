@@ -13,16 +13,18 @@
 #include "image/image.hpp"
 #include "render/build_options.hpp"
 #include "render/bvh.hpp"
+#include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
 
 // Rays traced, by kind, as counted by the kernel (KernelConfig::count_rays).
 struct RayCounts {
-  uint64_t primary = 0, shadow = 0, reflection = 0, sphere_tests = 0;
-  uint64_t total() const { return primary + shadow + reflection; }
+  uint64_t primary = 0, shadow = 0, reflection = 0, sphere_tests = 0, refraction = 0;
+  uint64_t total() const { return primary + shadow + reflection + refraction; }
   RayCounts& operator+=(const RayCounts& o) {
     primary += o.primary, shadow += o.shadow, reflection += o.reflection, sphere_tests += o.sphere_tests;
+    refraction += o.refraction;
     return *this;
   }
 };
@@ -59,7 +61,7 @@ class DeviceRenderer {
   // render_tile(); calling again with another scene or depth rebuilds where
   // the build options differ, else reuses the program; another spp (N x N
   // samples per pixel, read at run time) never rebuilds.
-  void prepare(const Scene& scene, int width, int height, int depth, int spp, const Bvh* bvh);
+  void prepare(const Scene& scene, int width, int height, int depth, Sampling sampling, const Bvh* bvh);
 
   // Resets the ray counts and download time of a frame.
   void begin_frame();
@@ -133,7 +135,7 @@ class DeviceRenderer {
   cl::Program program_;
   cl::Kernel kernel_;
   std::string options_, source_;
-  cl::Buffer params_, spheres_, lights_, nodes_, primitives_;
+  cl::Buffer params_, spheres_, lights_, nodes_, primitives_, planes_, triangles_, materials_;
   bool map_results_ = false;  // asked for and CL_DEVICE_HOST_UNIFIED_MEMORY: mapped, not read
   bool overlap_ = true;
   bool events_plausible_ = true;

@@ -25,18 +25,21 @@ constexpr bool counts_unrolled(size_t sphere_count, size_t light_count) {
 struct KernelFeatures {
   size_t sphere_count = 0;
   size_t light_count = 0;
+  size_t plane_count = 0;              // chapter 5's flat primitives (their loops
+  size_t triangle_count = 0;           // compile out when there are none)
   std::vector<LightType> light_types;  // each light's type, in scene order
   bool has_ambient = false;            // some light of each type
   bool has_point = false;
   bool has_directional = false;
-  bool has_specular = false;    // some sphere with specular != -1
-  bool has_reflective = false;  // some sphere with reflective > 0
+  bool has_specular = false;     // some sphere with specular != -1
+  bool has_reflective = false;   // some sphere with reflective > 0
+  bool has_transparent = false;  // some sphere with transparency > 0
   // Each sphere's needs_compensation() (render/conditioning.hpp), in scene
   // order: whether the robust kernel tests it with compensated arithmetic.
   // A specialized robust build makes them constants (build_options.cpp).
   std::vector<bool> compensated;
   // The recursion depth the kernel is built for: the requested one, folded
-  // to 0 when nothing reflects so that one program serves every depth.
+  // to 0 when nothing reflects or refracts so that one program serves every depth.
   int depth = 0;
   // Whether the counts (and light types) are compile-time constants with
   // unrolled loops: counts_unrolled(sphere_count, light_count).
@@ -46,8 +49,13 @@ struct KernelFeatures {
   size_t compensated_spheres() const;
   // Shadow rays are cast toward point and directional lights only.
   bool has_shadows() const { return has_point || has_directional; }
+  // Whether the kernel tests planes or triangles at all.
+  bool has_flat() const { return plane_count > 0 || triangle_count > 0; }
   // Reflection rays are traced only when something reflects and depth > 0.
   bool traces_reflections() const { return has_reflective && depth > 0; }
+  // Refracted rays (and the pending children of the tree walk, trace.cl)
+  // only when something is transparent and depth > 0.
+  bool traces_refractions() const { return has_transparent && depth > 0; }
 
   bool operator==(const KernelFeatures& other) const;
   bool operator!=(const KernelFeatures& other) const { return !(*this == other); }

@@ -30,12 +30,15 @@ const std::string& Renderer::options() const {
   return devices_.front()->options();
 }
 
-void Renderer::prepare(const Scene& scene, int width, int height, int depth, int spp) {
+void Renderer::prepare(const Scene& scene, int width, int height, int depth, Sampling sampling) {
+  const int spp = sampling.spp;
   if (spp < 1 || spp > CLRT_MAX_SPP)
     throw UserError("--spp must be in [1, " + std::to_string(CLRT_MAX_SPP) + "] (got " + std::to_string(spp) + ")");
+  if (!(sampling.adaptive_threshold <= 1e6))  // negative: off; NaN refused
+    throw UserError("--adaptive must be at most 1e6 levels");
   FrameStats stats;
   std::unique_ptr<Bvh> bvh;
-  if (uses_bvh(settings_.kernel.accel, scene.spheres.size(), settings_.kernel.precision)) {
+  if (uses_bvh(settings_.kernel.accel, bvh_primitive_count(scene), settings_.kernel.precision)) {
     const auto t0 = Clock::now();
     bvh = std::make_unique<Bvh>(
         build_bvh(scene, settings_.kernel.precision, packing_origin(scene, settings_.kernel.precision)));
@@ -53,7 +56,7 @@ void Renderer::prepare(const Scene& scene, int width, int height, int depth, int
   std::vector<std::thread> threads;
   auto prepare_device = [&](size_t i) {
     try {
-      devices_[i]->prepare(scene, width, height, depth, spp, bvh.get());
+      devices_[i]->prepare(scene, width, height, depth, sampling, bvh.get());
     } catch (...) {
       errors[i] = std::current_exception();
     }

@@ -12,6 +12,7 @@
 #include "render/band_scheduler.hpp"
 #include "render/build_options.hpp"
 #include "render/device_renderer.hpp"
+#include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
@@ -56,7 +57,7 @@ class Renderer {
   // Builds every device's program (in parallel) and uploads the scene. spp:
   // N x N samples per pixel (supersampling, kernels/trace.cl), a run-time
   // value like the depth: another spp rebuilds nothing.
-  void prepare(const Scene& scene, int width, int height, int depth, int spp = 1);
+  void prepare(const Scene& scene, int width, int height, int depth, Sampling sampling = {});
   // Renders the prepared scene: the whole frame, shared by every device.
   Image render();
   // The same into `out`, whose memory is reused when it has the frame's size

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstddef>
 #include <iterator>
+#include <map>
+#include <tuple>
 
 #include "render/conditioning.hpp"
 
@@ -15,10 +17,13 @@ namespace clrt {
 // that the layout test, which walks that list, covers every byte). A change
 // to clrt_layout.h that breaks this fails here.
 static_assert(sizeof(clrt_f32) == 4 && sizeof(clrt_i32) == 4, "32-bit scalars");
-static_assert(sizeof(clrt_sphere) == 64, "clrt_sphere size");
+static_assert(sizeof(clrt_sphere) == 80, "clrt_sphere size");
 static_assert(sizeof(clrt_light) == 32, "clrt_light size");
-static_assert(sizeof(clrt_params) == 168, "clrt_params size");
-static_assert(sizeof(clrt_ray_counts) == 16, "clrt_ray_counts size");
+static_assert(sizeof(clrt_params) == 184, "clrt_params size");
+static_assert(sizeof(clrt_material) == 32, "clrt_material size");
+static_assert(sizeof(clrt_plane) == 64, "clrt_plane size");
+static_assert(sizeof(clrt_triangle) == 96, "clrt_triangle size");
+static_assert(sizeof(clrt_ray_counts) == 20, "clrt_ray_counts size");
 static_assert(sizeof(clrt_bvh_node) == 32, "clrt_bvh_node size");
 
 namespace {
@@ -78,14 +83,59 @@ Vec3 packing_origin(const Scene& scene, Precision p) {
   return camera_relative(p) ? scene.camera.position : Vec3{};
 }
 
-SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, int spp) {
+namespace {
+
+// The smallest of the `candidates` (indices of transparent spheres) that
+// contains sphere `index` whole; nullptr if none.
+const Sphere* sphere_around(const Scene& scene, size_t index, const std::vector<size_t>& candidates) {
+  const Sphere& sphere = scene.spheres[index];
+  const Sphere* around = nullptr;
+  for (size_t k : candidates) {
+    const Sphere& o = scene.spheres[k];
+    if (k == index) continue;
+    if (length(o.center - sphere.center) + sphere.radius < o.radius && (!around || o.radius < around->radius))
+      around = &o;
+  }
+  return around;
+}
+
+std::vector<size_t> transparent_spheres(const Scene& scene) {
+  std::vector<size_t> indices;
+  for (size_t i = 0; i < scene.spheres.size(); ++i)
+    if (scene.spheres[i].transparency > 0) indices.push_back(i);
+  return indices;
+}
+
+}  // namespace
+
+// The medium around sphere `index`: the refractive index of the smallest
+// transparent sphere that contains it whole (|C_o - C| + r < r_o; ties: the
+// first), else 1. The reference states the same rule on its own
+// (reference.cpp, MediumOutside).
+double outside_medium(const Scene& scene, size_t index) {
+  const Sphere* around = sphere_around(scene, index, transparent_spheres(scene));
+  return around ? around->refractive_index : 1.0;
+}
+
+double camera_medium(const Scene& scene) {
+  const Sphere* around = nullptr;
+  for (const Sphere& o : scene.spheres) {
+    if (o.transparency <= 0) continue;
+    if (length(scene.camera.position - o.center) < o.radius && (!around || o.radius < around->radius)) around = &o;
+  }
+  return around ? around->refractive_index : 1.0;
+}
+
+SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling) {
   SceneData d;
   const Vec3 shift = packing_origin(scene, precision);
   clrt_params& p = d.params;
   p.width = width;
   p.height = height;
   p.depth = depth;
-  p.spp = spp;
+  p.spp = sampling.spp;
+  p.adaptive = sampling.adaptive() ? 1 : 0;
+  p.adaptive_threshold = static_cast<float>(sampling.adaptive() ? sampling.adaptive_threshold : 0.0);
   p.n_spheres = static_cast<clrt_i32>(scene.spheres.size());
   p.n_lights = static_cast<clrt_i32>(scene.lights.size());
   split_hi_lo(scene.camera.viewport_w, p.viewport[0], p.viewport_lo[0]);
@@ -97,8 +147,13 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
   p.background[0] = static_cast<float>(scene.background.x);
   p.background[1] = static_cast<float>(scene.background.y);
   p.background[2] = static_cast<float>(scene.background.z);
+  p.camera_medium = static_cast<float>(camera_medium(scene));
+  // Only transparent spheres can be another sphere's medium: the search
+  // runs over them alone (none in the book's scenes).
+  const std::vector<size_t> transparent = transparent_spheres(scene);
 
-  for (const Sphere& s : scene.spheres) {
+  for (size_t index = 0; index < scene.spheres.size(); ++index) {
+    const Sphere& s = scene.spheres[index];
     clrt_sphere o{};
     split3(s.center - shift, o.center, o.center_lo);
     split_hi_lo(s.radius, o.radius, o.radius_lo);
@@ -108,6 +163,10 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
     o.specular = static_cast<float>(s.specular);
     o.reflective = static_cast<float>(s.reflective);
     o.compensated = needs_compensation(s, scene);  // read by robust kernels only
+    o.transparency = static_cast<float>(s.transparency);
+    o.refractive_index = static_cast<float>(s.refractive_index);
+    const Sphere* around = sphere_around(scene, index, transparent);
+    o.outside_index = static_cast<float>(around ? around->refractive_index : 1.0);
     d.spheres.push_back(o);
   }
   for (const Light& l : scene.lights) {
@@ -118,6 +177,41 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
     if (l.type == LightType::Point) split3(l.vec - shift, o.vec, o.vec_lo);
     if (l.type == LightType::Directional) split3(l.vec, o.vec, o.vec_lo);
     d.lights.push_back(o);
+  }
+  // Planes and triangles name their material by index; equal materials (a
+  // mesh's faces) share one entry.
+  std::map<std::tuple<double, double, double, double, double>, clrt_i32> material_index;
+  auto material = [&](const Material& m) {
+    const auto key = std::make_tuple(m.color.x, m.color.y, m.color.z, m.specular, m.reflective);
+    auto [at, added] = material_index.emplace(key, static_cast<clrt_i32>(d.materials.size()));
+    if (added) {
+      clrt_material o{};
+      o.color[0] = static_cast<float>(m.color.x);
+      o.color[1] = static_cast<float>(m.color.y);
+      o.color[2] = static_cast<float>(m.color.z);
+      o.specular = static_cast<float>(m.specular);
+      o.reflective = static_cast<float>(m.reflective);
+      d.materials.push_back(o);
+    }
+    return at->second;
+  };
+  p.n_planes = static_cast<clrt_i32>(scene.planes.size());
+  p.n_triangles = static_cast<clrt_i32>(scene.triangles.size());
+  for (const Plane& plane : scene.planes) {
+    clrt_plane o{};
+    split3(plane.point - shift, o.point, o.point_lo);
+    split3(plane.normal, o.normal, o.normal_lo);
+    o.material = material(plane.material);
+    d.planes.push_back(o);
+  }
+  d.triangles.reserve(scene.triangles.size());
+  for (const Triangle& t : scene.triangles) {
+    clrt_triangle o{};
+    split3(t.v0 - shift, o.v0, o.v0_lo);
+    split3(t.v1 - shift, o.v1, o.v1_lo);
+    split3(t.v2 - shift, o.v2, o.v2_lo);
+    o.material = material(t.material);
+    d.triangles.push_back(o);
   }
   return d;
 }

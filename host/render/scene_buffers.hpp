@@ -5,6 +5,7 @@
 
 #include "clrt_layout.h"
 #include "render/precision.hpp"
+#include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
@@ -13,6 +14,9 @@ struct SceneData {
   clrt_params params{};
   std::vector<clrt_sphere> spheres;
   std::vector<clrt_light> lights;
+  std::vector<clrt_material> materials;  // of the planes and triangles
+  std::vector<clrt_plane> planes;
+  std::vector<clrt_triangle> triangles;
 };
 
 // Robust and fast modes are camera-relative: the host subtracts the camera
@@ -31,8 +35,15 @@ int kernel_light_code(LightType type);
 // misses, rounded): hi + lo carries ~48 bits, and lo is 0 for a float.
 void split_hi_lo(double value, float& hi, float& lo);
 
+// Chapter 5's media (refraction): the refractive index around sphere
+// `index` (that of the smallest transparent sphere containing it whole, else
+// 1) and around the camera (the smallest transparent sphere containing its
+// position, else 1): clrt_sphere.outside_index and clrt_params.camera_medium.
+double outside_medium(const Scene& scene, size_t index);
+double camera_medium(const Scene& scene);
+
 // spp: N for N x N samples per pixel (clrt_params.spp, read at run time).
-SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, int spp = 1);
+SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling = {});
 
 // One entry of CLRT_LAYOUT_FIELDS as this (host) compiler lays it out; the
 // layout test compares it with the kernel compiler's view.

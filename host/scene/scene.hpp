@@ -15,6 +15,37 @@ struct Sphere {
   Vec3 color;             // 0..255
   double specular = -1;   // -1 = matte
   double reflective = 0;  // 0..1
+  // Chapter 5's transparency and refraction: the share of the light that
+  // is not reflected which passes through the surface (0..1), and the
+  // refractive index of the sphere's inside (1 = no bending, the book's
+  // plain transparency). reference/reference.hpp states how they combine.
+  double transparency = 0;
+  double refractive_index = 1;
+};
+
+// The material of a plane or triangle (chapter 5's other primitives): the
+// sphere's shading fields. Planes and triangles are opaque (no transparency).
+struct Material {
+  Vec3 color;             // 0..255
+  double specular = -1;   // -1 = matte
+  double reflective = 0;  // 0..1
+};
+
+// An infinite plane: the points P with dot(normal, P) = dot(normal, point).
+// `normal` is stored with length 1 (the parser normalizes it); both sides
+// are surfaces (the normal is turned toward the ray when shading).
+struct Plane {
+  Vec3 point;
+  Vec3 normal;
+  Material material;
+};
+
+// A triangle (inline, or one face of an OBJ mesh after its transform):
+// vertices in the scene's coordinates, flat shaded with the geometric normal
+// turned toward the ray, both sides visible.
+struct Triangle {
+  Vec3 v0, v1, v2;
+  Material material;
 };
 
 enum class LightType { Ambient, Point, Directional };
@@ -39,6 +70,10 @@ struct Scene {
   double epsilon = 0.001;
   std::vector<Sphere> spheres;
   std::vector<Light> lights;
+  std::vector<Plane> planes;
+  // Inline triangles and every mesh's faces (scene_json.cpp loads the OBJ
+  // files, render/mesh ... see obj_mesh.hpp), in file order.
+  std::vector<Triangle> triangles;
 };
 
 // The range every engine and precision renders without overflow or
@@ -54,5 +89,8 @@ struct Scene {
 // rejects anything outside, naming the value and the limit.
 constexpr double kMaxLength = 1e8, kMinLength = 1e-8;
 constexpr double kMaxSpecular = 1e8, kMaxTotalIntensity = 1e30;
+// Refractive indices: physical ones lie in [1, ~4]; relative indices below 1
+// (an air bubble in water) are allowed down to kMinRefractiveIndex.
+constexpr double kMinRefractiveIndex = 0.1, kMaxRefractiveIndex = 10;
 
 }  // namespace clrt

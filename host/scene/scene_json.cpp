@@ -23,6 +23,7 @@
 #include <utility>
 
 #include "clrt_layout.h"
+#include "scene/obj_mesh.hpp"
 #include "util/error.hpp"
 
 namespace clrt {
@@ -62,6 +63,9 @@ enum class Slot : unsigned char {
   Epsilon,
   Spheres,
   Lights,
+  Planes,
+  Triangles,
+  Meshes,
   // of the camera
   Position,
   Rotation,
@@ -73,38 +77,93 @@ enum class Slot : unsigned char {
   Color,
   Specular,
   Reflective,
+  Transparency,
+  RefractiveIndex,
   // of a light
   Type,
   Intensity,
   LightPosition,
   Direction,
+  // of a plane
+  PlanePoint,
+  Normal,
+  PlaneColor,
+  PlaneSpecular,
+  PlaneReflective,
+  // of a triangle
+  Vertices,
+  TriangleColor,
+  TriangleSpecular,
+  TriangleReflective,
+  // of a mesh
+  File,
+  Translate,
+  Rotate,
+  Scale,
+  MeshColor,
+  MeshSpecular,
+  MeshReflective,
   // without a key: the whole text, elements of arrays
   Document,
   Sphere,
   Light,
   Row,     // of camera.rotation
   Number,  // of a vector
+  PlaneElement,
+  TriangleElement,
+  MeshElement,
+  Vertex,  // of a triangle's vertices
 };
 // string_view: a key is compared by its length first.
-constexpr std::string_view kKeyNames[] = {"camera", "background", "recursion_depth", "epsilon",  "spheres",
-                                          "lights", "position",   "rotation",        "viewport", "projection_plane_d",
-                                          "center", "radius",     "color",           "specular", "reflective",
-                                          "type",   "intensity",  "position",        "direction"};
+// clang-format off
+constexpr std::string_view kKeyNames[] = {
+    // root
+    "camera", "background", "recursion_depth", "epsilon", "spheres", "lights", "planes", "triangles", "meshes",
+    // camera
+    "position", "rotation", "viewport", "projection_plane_d",
+    // sphere
+    "center", "radius", "color", "specular", "reflective", "transparency", "refractive_index",
+    // light
+    "type", "intensity", "position", "direction",
+    // plane
+    "point", "normal", "color", "specular", "reflective",
+    // triangle
+    "vertices", "color", "specular", "reflective",
+    // mesh
+    "file", "translate", "rotate", "scale", "color", "specular", "reflective"};
+// clang-format on
 static_assert(std::size(kKeyNames) == size_t(Slot::Document));
-constexpr uint32_t bit(Slot s) {
-  return uint32_t(1) << static_cast<unsigned>(s);
+constexpr uint64_t bit(Slot s) {
+  return uint64_t(1) << static_cast<unsigned>(s);
 }
+static_assert(static_cast<unsigned>(Slot::Document) <= 64, "a key's bit must fit Frame::seen");
 
 // The containers a scene has; each open one is a Frame.
-enum class Ctx : unsigned char { Root, Camera, Sphere, Light, Spheres, Lights, Rotation, Numbers };
+enum class Ctx : unsigned char {
+  Root,
+  Camera,
+  Sphere,
+  Light,
+  Plane,
+  Triangle,
+  Mesh,
+  Spheres,
+  Lights,
+  Planes,
+  Triangles,
+  Meshes,
+  Rotation,
+  Vertices,
+  Numbers
+};
 constexpr bool is_object(Ctx c) {
-  return c <= Ctx::Light;
+  return c <= Ctx::Mesh;
 }
 
 struct Frame {
   Ctx ctx = Ctx::Root;
   Slot key = Slot::Document;  // objects: the key whose value is being read
-  uint32_t seen = 0;          // objects: bit(key) of every key read
+  uint64_t seen = 0;          // objects: bit(key) of every key read
   size_t count = 0;           // arrays: elements read (the index of the one being read)
 };
 
@@ -117,8 +176,14 @@ std::pair<Slot, Slot> keys_of(Ctx c) {
       return {Slot::Position, Slot::Center};
     case Ctx::Sphere:
       return {Slot::Center, Slot::Type};
+    case Ctx::Light:
+      return {Slot::Type, Slot::PlanePoint};
+    case Ctx::Plane:
+      return {Slot::PlanePoint, Slot::Vertices};
+    case Ctx::Triangle:
+      return {Slot::Vertices, Slot::File};
     default:
-      return {Slot::Type, Slot::Document};
+      return {Slot::File, Slot::Document};
   }
 }
 
@@ -135,11 +200,14 @@ bool light_allows(LightType t, Slot key) {
 // type error, so the parser never goes deeper).
 class SceneBuilder final : public nlohmann::json_sax<json> {
  public:
-  SceneBuilder(const std::string& name, const SceneLimits& limits) : name_(name), limits_(limits) {}
+  // `folder`: where mesh files are looked up (the scene file's folder).
+  SceneBuilder(const std::string& name, const SceneLimits& limits, std::filesystem::path folder)
+      : name_(name), limits_(limits), folder_(std::move(folder)) {}
 
   // After the parse: the checks that need the whole camera.
   Scene finish() {
     if (depth_ != 0) fail("", "incomplete scene");  // not reached: the parser reports the end of the text
+    load_meshes();
     // The camera's ray directions: rotation x (viewport/2, viewport/2, d).
     const Camera& c = scene_.camera;
     const auto& r = c.rotation;
@@ -155,6 +223,23 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
     return std::move(scene_);
   }
 
+  // The meshes' triangles, in the order of "meshes", after the inline
+  // "triangles"; each file is read once per mention, relative to the
+  // scene's folder.
+  void load_meshes() {
+    for (const MeshSource& m : meshes_) {
+      const std::filesystem::path file = folder_ / m.file;
+      const size_t room = limits_.triangles - std::min(limits_.triangles, scene_.triangles.size());
+      std::vector<Triangle> faces;
+      try {
+        faces = load_obj_mesh(file.string(), m.transform, m.material, room, kMaxMeshBytes);
+      } catch (const UserError& e) {
+        fail(m.where + ".file", e.what());
+      }
+      scene_.triangles.insert(scene_.triangles.end(), faces.begin(), faces.end());
+    }
+  }
+
   // ---- SAX events ----
   bool null() override { type_error(enter_value(), "null"); }
   bool boolean(bool) override { type_error(enter_value(), "boolean"); }
@@ -168,6 +253,10 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
   bool binary(binary_t&) override { type_error(enter_value(), "binary"); }
   bool string(string_t& v) override {
     const Slot s = enter_value();
+    if (s == Slot::File) {
+      mesh_file(v);
+      return true;
+    }
     if (s != Slot::Type) type_error(s, "string");
     light_type(v);
     return true;
@@ -190,6 +279,21 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
         light_ = Light{};
         light_typed_ = false;
         push(Ctx::Light);
+        break;
+      case Slot::PlaneElement:
+        plane_ = Plane{};
+        material_ = Material{};
+        push(Ctx::Plane);
+        break;
+      case Slot::TriangleElement:
+        triangle_ = Triangle{};
+        material_ = Material{};
+        push(Ctx::Triangle);
+        break;
+      case Slot::MeshElement:
+        mesh_ = MeshSource{};
+        material_ = Material{};
+        push(Ctx::Mesh);
         break;
       default:
         type_error(s, "object");
@@ -216,22 +320,34 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
     const Frame f = pop();
     if (f.ctx == Ctx::Sphere) finish_sphere(f.seen);
     if (f.ctx == Ctx::Light) finish_light(f.seen);
+    if (f.ctx == Ctx::Plane) finish_plane(f.seen);
+    if (f.ctx == Ctx::Triangle) finish_triangle(f.seen);
+    if (f.ctx == Ctx::Mesh) finish_mesh(f.seen);
     next_element();
     return true;
   }
 
   bool start_array(std::size_t) override {
     const Slot s = enter_value();
+    // The arrays of elements, each a container of its own.
+    constexpr std::pair<Slot, Ctx> kContainers[] = {{Slot::Spheres, Ctx::Spheres},   {Slot::Lights, Ctx::Lights},
+                                                    {Slot::Rotation, Ctx::Rotation}, {Slot::Planes, Ctx::Planes},
+                                                    {Slot::Meshes, Ctx::Meshes},     {Slot::Triangles, Ctx::Triangles},
+                                                    {Slot::Vertices, Ctx::Vertices}};
+    for (const auto& [slot, ctx] : kContainers)
+      if (s == slot) {
+        push(ctx);
+        return true;
+      }
     switch (s) {
-      case Slot::Spheres:
-        push(Ctx::Spheres);
-        break;
-      case Slot::Lights:
-        push(Ctx::Lights);
-        break;
-      case Slot::Rotation:
-        push(Ctx::Rotation);
-        break;
+      case Slot::PlanePoint:
+      case Slot::Normal:
+      case Slot::PlaneColor:
+      case Slot::TriangleColor:
+      case Slot::MeshColor:
+      case Slot::Translate:
+      case Slot::Rotate:
+      case Slot::Vertex:
       case Slot::Viewport:
       case Slot::Background:
       case Slot::Position:
@@ -254,6 +370,7 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
     // value_path() and slot() now name the array itself.
     if (f.ctx == Ctx::Numbers) finish_numbers(slot(), f.count);
     if (f.ctx == Ctx::Rotation && f.count != 3) fail(value_path(), "expected a 3x3 array of numbers");
+    if (f.ctx == Ctx::Vertices && f.count != 3) fail(value_path(), kVerticesMessage);
     if (f.ctx == Ctx::Lights) {
       double total = 0;
       for (const auto& l : scene_.lights) total += l.intensity;
@@ -290,7 +407,9 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
   }
 
  private:
-  static constexpr size_t kMaxDepth = 4;
+  // root, triangles, triangle, vertices, vertex
+  static constexpr size_t kMaxDepth = 5;
+  static constexpr const char* kVerticesMessage = "expected 3 vertices of 3 numbers each";
 
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw UserError(name_ + ": " + (where.empty() ? "" : where + ": ") + what);
@@ -339,6 +458,14 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
         return Slot::Row;
       case Ctx::Numbers:
         return Slot::Number;
+      case Ctx::Planes:
+        return Slot::PlaneElement;
+      case Ctx::Triangles:
+        return Slot::TriangleElement;
+      case Ctx::Meshes:
+        return Slot::MeshElement;
+      case Ctx::Vertices:
+        return Slot::Vertex;
       default:
         return f.key;
     }
@@ -353,6 +480,13 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
         fail(path(depth_ - 1), "more than " + std::to_string(limits_.spheres) + " spheres, the most clrt loads");
       if (f.ctx == Ctx::Lights && f.count >= limits_.lights)
         fail(path(depth_ - 1), "more than " + std::to_string(limits_.lights) + " lights, the most clrt loads");
+      if (f.ctx == Ctx::Vertices && f.count >= 3) fail(path(depth_ - 1), kVerticesMessage);
+      if (f.ctx == Ctx::Planes && f.count >= limits_.planes)
+        fail(path(depth_ - 1), "more than " + std::to_string(limits_.planes) + " planes, the most clrt loads");
+      if (f.ctx == Ctx::Triangles && f.count >= limits_.triangles)
+        fail(path(depth_ - 1), "more than " + std::to_string(limits_.triangles) + " triangles, the most clrt loads");
+      if (f.ctx == Ctx::Meshes && f.count >= limits_.meshes)
+        fail(path(depth_ - 1), "more than " + std::to_string(limits_.meshes) + " meshes, the most clrt loads");
     }
     return slot();
   }
@@ -367,10 +501,18 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
       case Slot::Camera:
       case Slot::Sphere:
       case Slot::Light:
+      case Slot::PlaneElement:
+      case Slot::TriangleElement:
+      case Slot::MeshElement:
         fail(value_path(), "expected an object, got " + got);
       case Slot::Spheres:
       case Slot::Lights:
+      case Slot::Planes:
+      case Slot::Triangles:
+      case Slot::Meshes:
         fail(value_path(), "expected an array, got " + got);
+      case Slot::Vertices:
+        fail(value_path(), kVerticesMessage);
       case Slot::Rotation:
         fail(value_path(), "expected a 3x3 array of numbers");
       case Slot::Viewport:
@@ -382,10 +524,19 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
       case Slot::Color:
       case Slot::LightPosition:
       case Slot::Direction:
+      case Slot::PlanePoint:
+      case Slot::Normal:
+      case Slot::PlaneColor:
+      case Slot::TriangleColor:
+      case Slot::MeshColor:
+      case Slot::Translate:
+      case Slot::Rotate:
+      case Slot::Vertex:
         fail(value_path(), "expected an array of 3 numbers");
       case Slot::RecursionDepth:
         fail(value_path(), "expected an integer, got " + got);
       case Slot::Type:
+      case Slot::File:
         fail(value_path(), "expected a string");
       default:
         fail(value_path(), "expected a number, got " + got);
@@ -413,7 +564,16 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
       case Slot::Radius:
       case Slot::Specular:
       case Slot::Reflective:
+      case Slot::Transparency:
+      case Slot::RefractiveIndex:
       case Slot::Intensity:
+      case Slot::PlaneSpecular:
+      case Slot::PlaneReflective:
+      case Slot::TriangleSpecular:
+      case Slot::TriangleReflective:
+      case Slot::MeshSpecular:
+      case Slot::MeshReflective:
+      case Slot::Scale:
         break;
       default:
         type_error(s, "number");
@@ -433,12 +593,29 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
         sphere_.radius = size(v);
         break;
       case Slot::Specular:
-        if (v != -1 && v < 0) fail(value_path(), "must be -1 (matte) or >= 0 (got " + fmt(v) + ")");
-        if (v > kMaxSpecular) fail(value_path(), "must be at most " + fmt(kMaxSpecular) + " (got " + fmt(v) + ")");
-        sphere_.specular = v;
+        sphere_.specular = specular(v);
+        break;
+      case Slot::PlaneSpecular:
+      case Slot::TriangleSpecular:
+      case Slot::MeshSpecular:
+        material_.specular = specular(v);
+        break;
+      case Slot::PlaneReflective:
+      case Slot::TriangleReflective:
+      case Slot::MeshReflective:
+        material_.reflective = in_range(v, 0, 1);
+        break;
+      case Slot::Scale:
+        mesh_.transform.scale = size(v);
         break;
       case Slot::Reflective:
         sphere_.reflective = in_range(v, 0, 1);
+        break;
+      case Slot::Transparency:
+        sphere_.transparency = in_range(v, 0, 1);
+        break;
+      case Slot::RefractiveIndex:
+        sphere_.refractive_index = in_range(v, kMinRefractiveIndex, kMaxRefractiveIndex);
         break;
       default:  // Slot::Intensity
         light_.intensity = in_range(v, 0, 1e30);
@@ -449,6 +626,11 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
   }
 
   // ---- checks of one value; `index` names a component of it ----
+  double specular(double v) const {
+    if (v != -1 && v < 0) fail(value_path(), "must be -1 (matte) or >= 0 (got " + fmt(v) + ")");
+    if (v > kMaxSpecular) fail(value_path(), "must be at most " + fmt(kMaxSpecular) + " (got " + fmt(v) + ")");
+    return v;
+  }
   double in_range(double v, double lo, double hi) const {
     if (v < lo || v > hi) fail(value_path(), "must be in [" + fmt(lo) + ", " + fmt(hi) + "] (got " + fmt(v) + ")");
     return v;
@@ -509,13 +691,81 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
       case Slot::LightPosition:
         light_position_ = position(v);
         break;
+      case Slot::PlanePoint:
+        plane_.point = position(v);
+        break;
+      case Slot::Normal:
+        plane_.normal = v;
+        break;
+      case Slot::PlaneColor:
+      case Slot::TriangleColor:
+      case Slot::MeshColor:
+        material_.color = color(v);
+        break;
+      case Slot::Vertex: {
+        const size_t index = top().count;  // of the triangle's vertices
+        (index == 0 ? triangle_.v0 : index == 1 ? triangle_.v1 : triangle_.v2) = position(v);
+        break;
+      }
+      case Slot::Translate:
+        mesh_.transform.translate = position(v);
+        break;
+      case Slot::Rotate:
+        for (double angle : {v.x, v.y, v.z})
+          if (std::fabs(angle) > 1e6) fail(value_path(), "angles must be within ±1e6 degrees (got " + fmt(angle) + ")");
+        mesh_.transform.rotate_degrees = v;
+        break;
       default:  // Slot::Direction
         light_direction_ = v;
         break;
     }
   }
 
-  void finish_sphere(uint32_t seen) {
+  // ---- chapter 5's other primitives ----
+  void finish_plane(uint64_t seen) {
+    if (!(seen & bit(Slot::PlanePoint))) fail(value_path(), "missing \"point\"");
+    if (!(seen & bit(Slot::Normal))) fail(value_path(), "missing \"normal\"");
+    if (!(seen & bit(Slot::PlaneColor))) fail(value_path(), "missing \"color\"");
+    // Scaled to length 1; as for light directions, a power of two first so
+    // that tiny or huge components do not underflow or overflow the length.
+    Vec3 n = plane_.normal;
+    if (n.x == 0 && n.y == 0 && n.z == 0) fail(value_path() + ".normal", "must not be the zero vector");
+    int e = 0;
+    (void)std::frexp(std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)}), &e);
+    n = {std::ldexp(n.x, -e), std::ldexp(n.y, -e), std::ldexp(n.z, -e)};
+    plane_.normal = (1.0 / length(n)) * n;
+    plane_.material = material_;
+    scene_.planes.push_back(plane_);
+  }
+
+  void finish_triangle(uint64_t seen) {
+    if (!(seen & bit(Slot::Vertices))) fail(value_path(), "missing \"vertices\"");
+    if (!(seen & bit(Slot::TriangleColor))) fail(value_path(), "missing \"color\"");
+    triangle_.material = material_;
+    scene_.triangles.push_back(triangle_);
+  }
+
+  void mesh_file(const std::string& file) {
+    // A scene names files in its own folder or below it: never an absolute
+    // path or "..", so that a scene from elsewhere cannot make clrt read
+    // files outside the folder it came in.
+    const std::filesystem::path p(file);
+    if (file.empty()) fail(value_path(), "must not be empty");
+    if (p.is_absolute()) fail(value_path(), "must be a path relative to the scene's folder (got an absolute path)");
+    for (const auto& part : p)
+      if (part == "..") fail(value_path(), "must not leave the scene's folder (\"..\")");
+    mesh_.file = file;
+  }
+
+  void finish_mesh(uint64_t seen) {
+    if (!(seen & bit(Slot::File))) fail(value_path(), "missing \"file\"");
+    if (!(seen & bit(Slot::MeshColor))) fail(value_path(), "missing \"color\"");
+    mesh_.material = material_;
+    mesh_.where = value_path();
+    meshes_.push_back(mesh_);
+  }
+
+  void finish_sphere(uint64_t seen) {
     if (!(seen & bit(Slot::Center))) fail(value_path(), "missing \"center\"");
     if (!(seen & bit(Slot::Radius))) fail(value_path(), "missing \"radius\"");
     if (!(seen & bit(Slot::Color))) fail(value_path(), "missing \"color\"");
@@ -539,7 +789,7 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
         fail(path(depth_ - 1), "unknown key " + json_quoted(std::string(kKeyNames[static_cast<unsigned>(k)])));
   }
 
-  void finish_light(uint32_t seen) {
+  void finish_light(uint64_t seen) {
     if (!(seen & bit(Slot::Type))) fail(value_path(), "missing \"type\"");
     if (light_.type == LightType::Point) {
       if (!(seen & bit(Slot::LightPosition))) fail(value_path(), "point light needs \"position\"");
@@ -565,6 +815,7 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
 
   const std::string& name_;
   const SceneLimits limits_;
+  const std::filesystem::path folder_;
   Scene scene_;
   std::array<Frame, kMaxDepth> stack_;
   size_t depth_ = 0;
@@ -575,6 +826,18 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
   Light light_;
   bool light_typed_ = false;
   Vec3 light_position_, light_direction_;
+  // The plane, triangle or mesh being read, and its material.
+  Plane plane_;
+  Triangle triangle_;
+  Material material_;
+  struct MeshSource {
+    std::string file;  // relative to the scene's folder
+    MeshTransform transform;
+    Material material;
+    std::string where;  // "meshes[2]"
+  };
+  MeshSource mesh_;
+  std::vector<MeshSource> meshes_;  // loaded by finish(), after the parse
 };
 
 // A stream's bytes in chunks, for the parser: a NUL byte (not JSON; nlohmann
@@ -619,17 +882,26 @@ Scene parse_scene(const std::string& text, const std::string& name, const SceneL
   if (const void* nul = std::memchr(text.data(), 0, text.size()))
     throw UserError(name + ": malformed JSON: NUL byte at offset " +
                     std::to_string(static_cast<const char*>(nul) - text.data()));
-  SceneBuilder builder(name, limits);
+  SceneBuilder builder(name, limits, ".");
   if (!json::sax_parse(text, &builder)) throw UserError(name + ": malformed JSON");  // not reached: errors throw
   return builder.finish();
 }
 
-Scene parse_scene(std::istream& in, const std::string& name, const SceneLimits& limits) {
+namespace {
+
+Scene parse_stream(std::istream& in, const std::string& name, const SceneLimits& limits,
+                   const std::filesystem::path& folder) {
   LimitedReader reader(in, name, limits.bytes);
   std::istream stream(&reader);
-  SceneBuilder builder(name, limits);
+  SceneBuilder builder(name, limits, folder);
   if (!json::sax_parse(stream, &builder)) throw UserError(name + ": malformed JSON");  // not reached: errors throw
   return builder.finish();
+}
+
+}  // namespace
+
+Scene parse_scene(std::istream& in, const std::string& name, const SceneLimits& limits) {
+  return parse_stream(in, name, limits, ".");
 }
 
 Scene load_scene(const std::string& path, const SceneLimits& limits) {
@@ -644,7 +916,9 @@ Scene load_scene(const std::string& path, const SceneLimits& limits) {
     const auto bytes = std::filesystem::file_size(path, ec);
     if (!ec && bytes > limits.bytes) too_large(path, limits.bytes);
   }
-  return parse_scene(in, path, limits);
+  // Mesh files are read from the scene file's folder.
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  return parse_stream(in, path, limits, folder.empty() ? std::filesystem::path(".") : folder);
 }
 
 std::string scene_to_json(const Scene& s, JsonStyle style) {
@@ -668,14 +942,39 @@ std::string scene_to_json(const Scene& s, JsonStyle style) {
     if (l.type == LightType::Directional) jl["type"] = "directional", jl["direction"] = v3(l.vec);
     root["lights"].push_back(jl);
   }
-  root["spheres"] = json::array();
+  auto material = [&v3](json& item, const Material& m) {
+    item["color"] = v3(m.color);
+    item["specular"] = m.specular;
+    item["reflective"] = m.reflective;
+  };
+  // Chapter 5's other primitives, only when the scene has them; a mesh's
+  // faces are written as its triangles (the scene then needs no OBJ file).
+  if (!s.planes.empty()) {
+    root["planes"] = json::array();
+    for (const Plane& plane : s.planes) {
+      json item = {{"point", v3(plane.point)}, {"normal", v3(plane.normal)}};
+      material(item, plane.material);
+      root["planes"].push_back(item);
+    }
+  }
+  if (!s.triangles.empty()) {
+    root["triangles"] = json::array();
+    for (const Triangle& t : s.triangles) {
+      json item = {{"vertices", json::array({v3(t.v0), v3(t.v1), v3(t.v2)})}};
+      material(item, t.material);
+      root["triangles"].push_back(item);
+    }
+  }
+  // The spheres are written one at a time (a document tree of a million
+  // spheres takes about 1.4 GB), with the same text json::dump gives, in
+  // place of a marker (no other string of a scene can be this one).
+  constexpr const char* kMarker = "@clrt-spheres@";
+  root["spheres"] = s.spheres.empty() ? json::array() : json(kMarker);
   std::string text = pretty ? root.dump(2) : root.dump();
   if (s.spheres.empty()) return text;
-  // The spheres are written one at a time (a document tree of a million
-  // spheres takes about 1.4 GB), with the same text json::dump gives:
-  // "spheres" sorts last among the keys, so the text ends in its "[]".
-  const size_t at = text.rfind("[]");
-  const std::string tail = text.substr(at + 2);  // "}" or "\n}"
+  const std::string quoted_marker = std::string("\"") + kMarker + "\"";
+  const size_t at = text.find(quoted_marker);
+  const std::string tail = text.substr(at + quoted_marker.size());
   text.resize(at);
   text += '[';
   json item = json::object();
@@ -686,6 +985,12 @@ std::string scene_to_json(const Scene& s, JsonStyle style) {
     item["color"] = v3(sp.color);
     item["specular"] = sp.specular;
     item["reflective"] = sp.reflective;
+    // Written only where they differ from the defaults, so scenes of the
+    // book's chapters 2-4 keep their text.
+    item.erase("transparency");
+    item.erase("refractive_index");
+    if (sp.transparency != 0) item["transparency"] = sp.transparency;
+    if (sp.refractive_index != 1) item["refractive_index"] = sp.refractive_index;
     if (pretty) {
       // An element of the root's "spheres": indented two levels deeper.
       text += i == 0 ? "\n    " : ",\n    ";

@@ -21,15 +21,22 @@ constexpr size_t kMaxSceneBytes = size_t(256) << 20;
 // kernels' 32-bit counts. (Every hit point tries every light, so many lights
 // make a slow render; 100 000 still render, tests/app/test_hardening.cpp.)
 constexpr size_t kMaxSceneSpheres = size_t(1) << 22, kMaxSceneLights = size_t(1) << 22;  // 4 194 304
+// Chapter 5's other primitives: planes are tested by every ray (no
+// hierarchy holds them), so few; triangles (inline and from OBJ meshes, see
+// obj_mesh.hpp) as many as a mesh may have.
+constexpr size_t kMaxScenePlanes = 1024, kMaxSceneTriangles = size_t(4000000), kMaxSceneMeshes = 1024;
 // What the loader accepts; tests lower the limits.
 struct SceneLimits {
   size_t bytes = kMaxSceneBytes;
   size_t spheres = kMaxSceneSpheres;
   size_t lights = kMaxSceneLights;
+  size_t planes = kMaxScenePlanes;
+  size_t triangles = kMaxSceneTriangles;  // inline and from meshes together
+  size_t meshes = kMaxSceneMeshes;
 };
-// JSON nesting needs no limit of its own: a scene nests 4 levels deep (root,
-// camera, rotation, row / root, spheres, sphere, center) and the parser stops
-// at the first array or object where the format has none.
+// JSON nesting needs no limit of its own: a scene nests 5 levels deep (root,
+// triangles, triangle, vertices, vertex) and the parser stops at the first
+// array or object where the format has none.
 
 // Parses and validates a scene; throws UserError("<name>: <path>: <problem>").
 // Directional light directions are rescaled by a power of two so their

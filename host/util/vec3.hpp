@@ -34,6 +34,10 @@ inline T dot(Vector3<T> a, Vector3<T> b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 template <class T>
+inline Vector3<T> cross(Vector3<T> a, Vector3<T> b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class T>
 inline T length(Vector3<T> a) {
   return std::sqrt(dot(a, a));
 }

@@ -26,6 +26,7 @@ TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench][opencl]
                         "rays_primary",
                         "rays_shadow",
                         "rays_reflection",
+                        "rays_refraction",
                         "mrays_per_s",
                         "reference_ms",
                         "omp_ms_median",
@@ -77,8 +78,9 @@ TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench][opencl]
   CHECK(j["peak_gflops"].get<double>() > 0);
   // Every pixel shoots one primary ray; the totals add up.
   CHECK(j["rays_primary"] == 320 * 240);
-  CHECK(j["rays_total"].get<uint64_t>() ==
-        j["rays_primary"].get<uint64_t>() + j["rays_shadow"].get<uint64_t>() + j["rays_reflection"].get<uint64_t>());
+  CHECK(j["rays_total"].get<uint64_t>() == j["rays_primary"].get<uint64_t>() + j["rays_shadow"].get<uint64_t>() +
+                                               j["rays_reflection"].get<uint64_t>() +
+                                               j["rays_refraction"].get<uint64_t>());
 }
 
 TEST_CASE("clrt bench --no-embree, --no-omp and --no-reference drop their comparisons", "[cli][bench][opencl]") {

@@ -145,6 +145,11 @@ TEST_CASE("bad --spp: one error line, exit 2, on every command that renders", "[
   check_error(run_clrt({"bench", demo, "--spp", "0"}), {"--spp: Value 0 not in range 1 to 16"});
   check_error(run_clrt({"sweep", demo, "--spp", "99"}), {"--spp: Value 99 not in range 1 to 16"});
   check_error(run_clrt({"accuracy", demo, "--spp", "-1"}), {"--spp"});
+  // Adaptive supersampling needs a grid with more than its corners.
+  check_bad_render({"--spp", "2", "--adaptive", "4"}, out, {"--adaptive needs --spp 3 or more"});
+  check_bad_render({"--spp", "4", "--adaptive", "-1"}, out, {"--adaptive"});
+  check_bad_render({"--spp", "4", "--adaptive", "nan"}, out, {"--adaptive"});
+  check_error(run_clrt({"compare", demo, "--adaptive", "4"}), {"--adaptive needs --spp 3 or more"});
   CHECK(dir.entries().empty());
 }
 

@@ -1,10 +1,42 @@
-// test_program_cache.cpp - the program cache key (no device needed; the
-// cache on a device is in tests/render/test_specialize.cpp).
+// test_program_cache.cpp - the program cache key, its size limit, info and
+// clear (no device needed; the cache on a device is in
+// tests/render/test_specialize.cpp).
 #include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 
 #include "cl/program_cache.hpp"
+#include "cli_run.hpp"
+#include "util/error.hpp"
 
 using namespace clrt;
+
+namespace {
+
+// Sets an environment variable for a scope, then restores it.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+    ::setenv(name, value, 1);
+  }
+  ~ScopedEnv() {
+    if (had_)
+      ::setenv(name_.c_str(), old_.c_str(), 1);
+    else
+      ::unsetenv(name_.c_str());
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  std::string name_, old_;
+  bool had_ = false;
+};
+
+}  // namespace
 
 TEST_CASE("program cache key covers source, options and device", "[cache]") {
   ProgramCacheKey a{"src", "-DX=1", "dev", "drv", "plat"};
@@ -18,4 +50,169 @@ TEST_CASE("program cache key covers source, options and device", "[cache]") {
   // Length-prefixed fields: moving text between fields changes the key.
   ProgramCacheKey e{"srcx", "", "dev", "drv", "plat"}, f{"src", "x", "dev", "drv", "plat"};
   CHECK(e.text() != f.text());
+}
+
+// ---- the size limit, info and clear (no device needed) ------------------------
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// An entry file of `bytes` bytes in `dir` whose name is the hash of `seed`,
+// last modified `age_s` seconds ago.
+std::string make_entry(const clrt_test::TempDir& dir, const std::string& seed, size_t bytes, int age_s) {
+  const ProgramCacheKey key{seed, "", "dev", "drv", "plat"};
+  const std::string path = dir / (key.hash() + ".bin");
+  const std::string text = key.text();
+  const size_t overhead = 8 + 8 + text.size() + 8 + 8;
+  REQUIRE(bytes > overhead);
+  REQUIRE(cache_write_entry(path, text, std::vector<unsigned char>(bytes - overhead, 0x5a)));
+  REQUIRE(fs::file_size(path) == bytes);
+  fs::last_write_time(path, fs::file_time_type::clock::now() - std::chrono::seconds(age_s));
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("cache sizes parse with binary suffixes", "[cache]") {
+  CHECK(parse_cache_size("0") == 0u);
+  CHECK(parse_cache_size("1048576") == 1048576u);
+  CHECK(parse_cache_size("512K") == 512u << 10);
+  CHECK(parse_cache_size("256M") == 256u << 20);
+  CHECK(parse_cache_size("256MiB") == 256u << 20);
+  CHECK(parse_cache_size("2g") == 2ull << 30);
+  CHECK(parse_cache_size("7b") == 7u);
+  for (const char* bad : {"", "M", "-1", "1.5G", "12x", " 12", "12 ", "1T", "99999999999999999999", "17179869184G"}) {
+    INFO(bad);
+    CHECK_FALSE(parse_cache_size(bad).has_value());
+  }
+  CHECK(kDefaultProgramCacheLimit == 256u << 20);
+}
+
+TEST_CASE("cache entry names: 16 hex digits and .bin, nothing else", "[cache]") {
+  CHECK(is_cache_entry_name("0123456789abcdef.bin"));
+  CHECK(is_cache_entry_name(ProgramCacheKey{"s", "o", "d", "v", "p"}.hash() + ".bin"));
+  for (const char* other : {"0123456789abcdef.bin.bad", "0123456789abcdef.bin.loading", "0123456789ABCDEF.bin",
+                            "0123456789abcde.bin", "0123456789abcdefg.bin", "0123456789abcdef.bin.tmp.1.0",
+                            "0123456789abcdef.txt", "x123456789abcdef.bin", ".bin", "notes.txt"}) {
+    INFO(other);
+    CHECK_FALSE(is_cache_entry_name(other));
+  }
+}
+
+TEST_CASE("eviction deletes the oldest entries until the total is under the limit", "[cache]") {
+  clrt_test::TempDir dir;
+  const std::string oldest = make_entry(dir, "a", 4000, 400);
+  const std::string old = make_entry(dir, "b", 4000, 300);
+  const std::string recent = make_entry(dir, "c", 4000, 200);
+  const std::string newest = make_entry(dir, "d", 4000, 100);
+  const std::string d = dir.path().string();
+
+  CHECK(cache_evict(d, 16000) == 0);  // at the limit: nothing to do
+  CHECK(cache_stats(d).entries == 4);
+  CHECK(cache_evict(d, 10000) == 2);
+  CHECK_FALSE(fs::exists(oldest));
+  CHECK_FALSE(fs::exists(old));
+  CHECK(fs::exists(recent));
+  CHECK(fs::exists(newest));
+  const ProgramCacheStats s = cache_stats(d);
+  CHECK(s.entries == 2);
+  CHECK(s.bytes == 8000);
+  CHECK(s.bytes <= 10000);
+  CHECK(cache_evict(d, 0) == 2);  // a limit of 0 keeps nothing
+  CHECK(cache_stats(d).entries == 0);
+  CHECK(cache_evict(dir / "missing", 0) == 0);
+}
+
+TEST_CASE("eviction never deletes what is not an entry and follows no link", "[cache]") {
+  clrt_test::TempDir outside, dir;
+  const std::string d = dir.path().string();
+  // Big files that are not entries: other names, markers, a directory.
+  const std::string notes = dir.write("notes.txt", std::string(50000, 'x'));
+  const std::string upper = dir.write("0123456789ABCDEF.bin", std::string(50000, 'x'));
+  const std::string loading = dir.write("0123456789abcdef.bin.loading", "1\n");
+  const std::string temp = dir.write("0123456789abcdef.bin.tmp.1.0", std::string(50000, 'x'));
+  fs::create_directory(dir / "fedcba9876543210.bin");
+  std::ofstream(dir / "fedcba9876543210.bin/inner") << "keep";
+  // Links named like entries, to a big file outside and to an entry outside.
+  const std::string target = outside.write("precious", std::string(50000, 'p'));
+  fs::create_symlink(target, dir / "1111111111111111.bin");
+  const ProgramCacheKey key{"outside", "", "dev", "drv", "plat"};
+  const std::string outside_entry = outside / (key.hash() + ".bin");
+  REQUIRE(cache_write_entry(outside_entry, key.text(), std::vector<unsigned char>(50000, 1)));
+  fs::create_symlink(outside_entry, dir / "2222222222222222.bin");
+  // One real entry, old.
+  const std::string entry = make_entry(dir, "real", 3000, 1000);
+
+  ProgramCacheStats s = cache_stats(d);
+  CHECK(s.entries == 1);  // links, directories and other names do not count
+  CHECK(s.bytes == 3000);
+  CHECK(s.other == 7);
+
+  CHECK(cache_evict(d, 0) == 1);
+  CHECK_FALSE(fs::exists(entry));
+  for (const auto& kept : {notes, upper, loading, temp, target, outside_entry}) {
+    INFO(kept);
+    CHECK(fs::exists(kept));
+  }
+  CHECK(fs::file_size(target) == 50000);
+  CHECK(fs::is_symlink(dir / "1111111111111111.bin"));
+  CHECK(fs::is_symlink(dir / "2222222222222222.bin"));
+  CHECK(fs::exists(dir / "fedcba9876543210.bin/inner"));
+
+  // A link named like an entry is never read as one either.
+  std::string text;
+  std::vector<unsigned char> bin;
+  CHECK(cache_read_entry(outside_entry, text, bin));
+  CHECK_FALSE(cache_read_entry(dir / "2222222222222222.bin", text, bin));
+}
+
+TEST_CASE("clear deletes entries and bad-key marks only", "[cache]") {
+  clrt_test::TempDir outside, dir;
+  const std::string d = dir.path().string();
+  const std::string a = make_entry(dir, "a", 2000, 10), b = make_entry(dir, "b", 3000, 5);
+  const std::string bad = dir.write(fs::path(a).filename().string() + ".bad", "crashed\n");
+  const std::string notes = dir.write("notes.txt", "mine");
+  const std::string target = outside.write("precious", "p");
+  fs::create_symlink(target, dir / "3333333333333333.bin");
+
+  const ProgramCacheCleared c = cache_clear(d);
+  CHECK(c.entries == 2);
+  CHECK(c.bytes == 5000);
+  CHECK(c.bad_markers == 1);
+  CHECK_FALSE(fs::exists(a));
+  CHECK_FALSE(fs::exists(b));
+  CHECK_FALSE(fs::exists(bad));
+  CHECK(fs::exists(notes));
+  CHECK(fs::exists(target));
+  CHECK(fs::is_symlink(dir / "3333333333333333.bin"));
+  const ProgramCacheStats s = cache_stats(d);
+  CHECK(s.entries == 0);
+  CHECK(s.other == 2);
+}
+
+TEST_CASE("storing enforces the limit of CLRT_CACHE_MAX_SIZE", "[cache]") {
+  clrt_test::TempDir dir;
+  const std::string d = dir.path().string();
+  const std::string old1 = make_entry(dir, "old1", 3000, 300), old2 = make_entry(dir, "old2", 3000, 200);
+  const std::string keep = dir.write("notes.txt", std::string(10000, 'x'));
+  ScopedEnv cache_dir("CLRT_CACHE_DIR", d.c_str()), limit("CLRT_CACHE_MAX_SIZE", "7K");
+  CHECK(program_cache_limit() == 7168);
+  const ProgramCacheKey key{"new", "-DX", "dev", "drv", "plat"};
+  REQUIRE(cache_store(key, std::vector<unsigned char>(2000, 7)));
+  // 3000 + 3000 + ~2100 > 7168: the oldest went, the new entry stays.
+  CHECK_FALSE(fs::exists(old1));
+  CHECK(fs::exists(old2));
+  CHECK(fs::exists(cache_entry_path(key)));
+  CHECK(fs::exists(keep));
+  CHECK(cache_stats(d).bytes <= 7168);
+  REQUIRE(cache_load(key).has_value());
+
+  // A binary larger than the limit is not stored at all.
+  const ProgramCacheKey big{"big", "", "dev", "drv", "plat"};
+  CHECK_FALSE(cache_store(big, std::vector<unsigned char>(8000, 1)));
+  CHECK_FALSE(fs::exists(cache_entry_path(big)));
+
+  ScopedEnv bad_limit("CLRT_CACHE_MAX_SIZE", "lots");
+  CHECK_THROWS_AS(program_cache_limit(/*strict=*/true), UserError);
 }

@@ -58,9 +58,13 @@ TEST_CASE("features of every shipped scene", "[features]") {
     INFO(path);
     const Scene s = load_scene(path);
     const KernelFeatures f = kernel_features(s, 3);
-    // Every shipped scene is the book's kind: 4 spheres, one light of each
-    // type, everything shiny and reflective.
-    CHECK(f.sphere_count == 4);
+    // Every shipped scene of chapters 2-4 is the book's kind: 4 spheres, one
+    // light of each type, everything shiny and reflective, nothing
+    // transparent; the chapter 5 scene (glass.json) adds transparent spheres.
+    const bool chapter5 = path.find("glass") != std::string::npos;
+    CHECK(f.has_transparent == chapter5);
+    CHECK(f.traces_refractions() == chapter5);
+    CHECK(f.sphere_count == (chapter5 ? 7 : 4));
     CHECK(f.light_count == 3);
     CHECK(f.light_types == std::vector<LightType>{LightType::Ambient, LightType::Point, LightType::Directional});
     CHECK(f.has_ambient);
@@ -157,11 +161,24 @@ TEST_CASE("features become one -D list, joined for the build and the cache key",
   const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
   const KernelFeatures f = kernel_features(demo, 3);
   KernelConfig cfg;  // robust, specialized, lanes not yet resolved by a device: 8
-  std::vector<std::string> expected = {
-      "-cl-std=CL1.2",      "-DCLRT_PRECISION=2",       "-cl-denorms-are-zero",    "-DCLRT_OUT_CLASSES",
-      "-DCLRT_LANES=8",     "-DCLRT_PACKET_ROWS=2",     "-DCLRT_SPECIALIZED",      "-DCLRT_HAS_AMBIENT=1",
-      "-DCLRT_HAS_POINT=1", "-DCLRT_HAS_DIRECTIONAL=1", "-DCLRT_HAS_SPECULAR=1",   "-DCLRT_HAS_REFLECTIVE=1",
-      "-DCLRT_N_SPHERES=4", "-DCLRT_N_LIGHTS=3",        "-DCLRT_LIGHT_TYPES=0,1,2"};
+  std::vector<std::string> expected = {"-cl-std=CL1.2",
+                                       "-DCLRT_PRECISION=2",
+                                       "-cl-denorms-are-zero",
+                                       "-DCLRT_OUT_CLASSES",
+                                       "-DCLRT_LANES=8",
+                                       "-DCLRT_PACKET_ROWS=2",
+                                       "-DCLRT_SPECIALIZED",
+                                       "-DCLRT_HAS_AMBIENT=1",
+                                       "-DCLRT_HAS_POINT=1",
+                                       "-DCLRT_HAS_DIRECTIONAL=1",
+                                       "-DCLRT_HAS_SPECULAR=1",
+                                       "-DCLRT_HAS_REFLECTIVE=1",
+                                       "-DCLRT_HAS_TRANSPARENT=0",
+                                       "-DCLRT_HAS_PLANES=0",
+                                       "-DCLRT_HAS_TRIANGLES=0",
+                                       "-DCLRT_N_SPHERES=4",
+                                       "-DCLRT_N_LIGHTS=3",
+                                       "-DCLRT_LIGHT_TYPES=0,1,2"};
   expected.push_back("-DCLRT_COMPENSATED_FLAGS=0,0,0,1");  // only the floor is compensated (test_conditioning.cpp)
   CHECK(build_option_list(cfg, f, false) == expected);
   // The old entry point is the composition of the two steps.

@@ -143,3 +143,73 @@ TEST_CASE("the renderer refuses spp outside 1 to CLRT_MAX_SPP", "[opencl][spp]")
   CHECK_THROWS_AS(r.prepare(s, 8, 8, 1, 0), UserError);
   CHECK_THROWS_AS(r.prepare(s, 8, 8, 1, CLRT_MAX_SPP + 1), UserError);
 }
+
+TEST_CASE("adaptive supersampling: OpenCL matches the reference's adaptive rule", "[opencl][spp]") {
+  // The same tolerance as uniform supersampling: the corners' decision
+  // (same primitive, span within T) is taken in float by the kernel and in
+  // double by the reference, and may differ where a span is within rounding
+  // of T; such a pixel is then the mean of 4 or of N^2 samples.
+  for (const char* path : {"scenes/cgfs-demo.json", "scenes/glass.json"}) {
+    const Scene s = clrt_test::load(path);
+    for (double threshold : {0.0, 4.0, 1e6}) {
+      const Sampling sampling(4, threshold);
+      const Image ref = render_reference(s, kW, kH, 3, sampling);
+      for (const auto& [name, cfg] : builds()) {
+        INFO(path << " T " << threshold << " " << name);
+        Renderer r = clrt_test::renderer(cfg);
+        r.prepare(s, kW, kH, 3, sampling);
+        const Comparison c = compare_images(r.render(), ref);
+        INFO("off by > 1: " << c.off_by_gt1 << ", max " << c.max_abs_8bit);
+        CHECK(within_tolerance(c));
+        CHECK(c.nan_inf == 0);
+      }
+    }
+  }
+}
+
+TEST_CASE("adaptive supersampling refines the edge pixel and nothing flat", "[opencl][spp]") {
+  // The edge pixel of edge_scene.hpp: its corners straddle the sphere's
+  // silhouette (different primitives), so it is refined to the N^2 mean at
+  // any T; a pixel of the flat background keeps its 4 corners, all equal.
+  using clrt_test::EdgeScene;
+  const Scene s = EdgeScene::scene();
+  const int row = EdgeScene::row();
+  for (int n : {3, 4, 5}) {
+    if (EdgeScene::hits(n) == 0 || EdgeScene::hits(n) == n * n) continue;  // corners on one side
+    const Sampling sampling(n, 1e6);
+    const Image ref = render_reference(s, EdgeScene::kWidth, EdgeScene::kHeight, 3, sampling);
+    const size_t p = size_t(row) * EdgeScene::kWidth + EdgeScene::col(EdgeScene::kEdgeX);
+    for (int c = 0; c < 3; ++c) CHECK(ref.rgb[p * 3 + c] == Approx(EdgeScene::expected(n, c)).epsilon(1e-12));
+    for (const auto& [name, cfg] : builds()) {
+      INFO(name << " spp " << n);
+      Renderer r = clrt_test::renderer(cfg);
+      r.prepare(s, EdgeScene::kWidth, EdgeScene::kHeight, 3, sampling);
+      const Image img = r.render();
+      for (int c = 0; c < 3; ++c) CHECK(to_u8(img.rgb[p * 3 + c]) == to_u8(EdgeScene::expected(n, c)));
+      CHECK(img.rgb[2] == Approx(EdgeScene::kBackground[2]));  // a corner pixel: background
+    }
+  }
+}
+
+TEST_CASE("adaptive supersampling traces 4 rays where the corners agree", "[opencl][spp][rays]") {
+  // The camera inside one sphere: every corner hits it. With T = 1e6 every
+  // pixel keeps its 4 corners; with T = 0 a pixel refines unless its 4
+  // corners have the same colour, and then traces N^2.
+  const Scene inside = clrt_test::camera_inside_sphere();
+  const int W = 37, H = 11, depth = 2, n = 4;
+  const uint64_t pixels = uint64_t(W) * H;
+  for (const auto& [name, base] : builds()) {
+    INFO(name);
+    KernelConfig cfg = base;
+    cfg.count_rays = true;
+    Renderer r = clrt_test::renderer(cfg);
+    r.prepare(inside, W, H, depth, Sampling(n, 1e6));
+    r.render();
+    CHECK(r.stats().rays.primary == 4 * pixels);
+    r.prepare(inside, W, H, depth, Sampling(n, 0));
+    r.render();
+    CHECK(r.stats().rays.primary > 4 * pixels);
+    CHECK(r.stats().rays.primary <= uint64_t(n) * n * pixels);
+    CHECK((r.stats().rays.primary - 4 * pixels) % (n * n - 4) == 0);  // whole pixels refined
+  }
+}
