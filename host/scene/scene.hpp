@@ -32,8 +32,9 @@ struct Material {
 };
 
 // An infinite plane: the points P with dot(normal, P) = dot(normal, point).
-// `normal` is stored with length 1 (the parser normalizes it); both sides
-// are surfaces (the normal is turned toward the ray when shading).
+// `normal` is not unit length (the parser rescales it by a power of two; the
+// engines normalize it where they shade); both sides are surfaces (the
+// normal is turned toward the ray when shading).
 struct Plane {
   Vec3 point;
   Vec3 normal;

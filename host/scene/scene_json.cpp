@@ -726,14 +726,16 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
     if (!(seen & bit(Slot::PlanePoint))) fail(value_path(), "missing \"point\"");
     if (!(seen & bit(Slot::Normal))) fail(value_path(), "missing \"normal\"");
     if (!(seen & bit(Slot::PlaneColor))) fail(value_path(), "missing \"color\"");
-    // Scaled to length 1; as for light directions, a power of two first so
-    // that tiny or huge components do not underflow or overflow the length.
+    // Rescaled by a power of two, as light directions are, so that its
+    // largest component lies in [0.5, 1): exact and idempotent (a scene
+    // written back parses to the same values; dividing by the length would
+    // not be), and no later length under- or overflows. Every use of the
+    // normal is scale-invariant or normalizes it.
     Vec3 n = plane_.normal;
     if (n.x == 0 && n.y == 0 && n.z == 0) fail(value_path() + ".normal", "must not be the zero vector");
     int e = 0;
     (void)std::frexp(std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)}), &e);
-    n = {std::ldexp(n.x, -e), std::ldexp(n.y, -e), std::ldexp(n.z, -e)};
-    plane_.normal = (1.0 / length(n)) * n;
+    plane_.normal = {std::ldexp(n.x, -e), std::ldexp(n.y, -e), std::ldexp(n.z, -e)};
     plane_.material = material_;
     scene_.planes.push_back(plane_);
   }

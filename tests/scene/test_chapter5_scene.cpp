@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -46,18 +47,20 @@ TEST_CASE("transparency and refractive index: defaults, ranges", "[scene]") {
         "t: spheres[0].refractive_index: expected a number, got string");
 }
 
-TEST_CASE("planes: the normal is stored with length 1, the material read", "[scene][flat]") {
+TEST_CASE("planes: the normal is rescaled by a power of two, the material read", "[scene][flat]") {
   const Scene s = parse_scene(R"({"planes": [{"point": [0, -1, 0], "normal": [0, 1e-300, 0], "color": [9, 8, 7],
       "specular": 10, "reflective": 0.5}, {"point": [1, 2, 3], "normal": [3, 0, -4], "color": [1, 1, 1]}]})",
                               "t");
   REQUIRE(s.planes.size() == 2);
-  CHECK(s.planes[0].normal.y == Approx(1).epsilon(1e-15));  // 1e-300 scaled without underflow
+  CHECK(s.planes[0].normal.y == 0.5 * (1e-300 / std::ldexp(1.0, std::ilogb(1e-300))));  // exact, no underflow
+  CHECK(s.planes[0].normal.y >= 0.5);
+  CHECK(s.planes[0].normal.y < 1);
   CHECK(s.planes[0].point.y == -1);
   CHECK(s.planes[0].material.color.x == 9);
   CHECK(s.planes[0].material.specular == 10);
   CHECK(s.planes[0].material.reflective == 0.5);
-  CHECK(s.planes[1].normal.x == Approx(0.6).epsilon(1e-15));
-  CHECK(s.planes[1].normal.z == Approx(-0.8).epsilon(1e-15));
+  CHECK(s.planes[1].normal.x == 0.375);  // (3, 0, -4) / 8
+  CHECK(s.planes[1].normal.z == -0.5);
   CHECK(s.planes[1].material.specular == -1);  // matte by default, like a sphere
   CHECK(error_of(R"({"planes": [{"point": [0, 0, 0], "normal": [0, 0, 0], "color": [1, 1, 1]}]})") ==
         "t: planes[0].normal: must not be the zero vector");
