@@ -187,6 +187,33 @@ std::pair<Slot, Slot> keys_of(Ctx c) {
   }
 }
 
+// The numbers in a vector value (a key whose value is an array of numbers),
+// 0 for every other slot: the one list start_array and type_error use.
+size_t vector_size(Slot s) {
+  switch (s) {
+    case Slot::Viewport:
+      return 2;
+    case Slot::Background:
+    case Slot::Position:
+    case Slot::Row:
+    case Slot::Center:
+    case Slot::Color:
+    case Slot::LightPosition:
+    case Slot::Direction:
+    case Slot::PlanePoint:
+    case Slot::Normal:
+    case Slot::PlaneColor:
+    case Slot::TriangleColor:
+    case Slot::MeshColor:
+    case Slot::Translate:
+    case Slot::Rotate:
+    case Slot::Vertex:
+      return 3;
+    default:
+      return 0;
+  }
+}
+
 bool light_allows(LightType t, Slot key) {
   if (key == Slot::LightPosition) return t == LightType::Point;
   if (key == Slot::Direction) return t == LightType::Directional;
@@ -339,30 +366,12 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
         push(ctx);
         return true;
       }
-    switch (s) {
-      case Slot::PlanePoint:
-      case Slot::Normal:
-      case Slot::PlaneColor:
-      case Slot::TriangleColor:
-      case Slot::MeshColor:
-      case Slot::Translate:
-      case Slot::Rotate:
-      case Slot::Vertex:
-      case Slot::Viewport:
-      case Slot::Background:
-      case Slot::Position:
-      case Slot::Row:
-      case Slot::Center:
-      case Slot::Color:
-      case Slot::LightPosition:
-      case Slot::Direction:
-        numbers_size_ = s == Slot::Viewport ? 2 : 3;
-        push(Ctx::Numbers);
-        break;
-      default:
-        type_error(s, "array");
+    if (const size_t numbers = vector_size(s)) {
+      numbers_size_ = numbers;
+      push(Ctx::Numbers);
+      return true;
     }
-    return true;
+    type_error(s, "array");
   }
 
   bool end_array() override {
@@ -496,6 +505,7 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
 
   // A value of type `got` where slot `s` wants another.
   [[noreturn]] void type_error(Slot s, const std::string& got) const {
+    if (vector_size(s) == 3) fail(value_path(), "expected an array of 3 numbers");
     switch (s) {
       case Slot::Document:
       case Slot::Camera:
@@ -517,22 +527,6 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
         fail(value_path(), "expected a 3x3 array of numbers");
       case Slot::Viewport:
         fail(value_path(), "expected an array of 2 numbers");
-      case Slot::Background:
-      case Slot::Position:
-      case Slot::Row:
-      case Slot::Center:
-      case Slot::Color:
-      case Slot::LightPosition:
-      case Slot::Direction:
-      case Slot::PlanePoint:
-      case Slot::Normal:
-      case Slot::PlaneColor:
-      case Slot::TriangleColor:
-      case Slot::MeshColor:
-      case Slot::Translate:
-      case Slot::Rotate:
-      case Slot::Vertex:
-        fail(value_path(), "expected an array of 3 numbers");
       case Slot::RecursionDepth:
         fail(value_path(), "expected an integer, got " + got);
       case Slot::Type:

@@ -19,10 +19,6 @@ namespace {
 // 157 x 118: partial work-item blocks at the right and bottom edges.
 constexpr int kW = 157, kH = 118;
 
-std::vector<std::pair<std::string, KernelConfig>> builds(const DeviceInfo& dev) {
-  return clrt_test::kernel_builds(dev);
-}
-
 Image render(const KernelConfig& cfg, const Scene& s, int w, int h, int depth, Accel accel = Accel::Auto,
              FrameStats* stats = nullptr) {
   KernelConfig c = cfg;
@@ -87,7 +83,7 @@ TEST_CASE("OpenCL matches the reference on planes and triangles", "[opencl][flat
   const DeviceInfo dev = clrt_test::test_device();
   for (int depth : {0, 1, 3}) {
     const Image ref = render_reference(s, kW, kH, depth);
-    for (const auto& [name, cfg] : builds(dev)) {
+    for (const auto& [name, cfg] : clrt_test::kernel_builds(dev)) {
       for (Accel accel : {Accel::None, Accel::Bvh}) {
         if (accel == Accel::Bvh && cfg.precision == Precision::Naive) continue;
         INFO(name << ", depth " << depth << ", " << accel_name(accel));
@@ -149,7 +145,7 @@ TEST_CASE("no ray passes between the triangles of a mesh, at its edges and verti
     for (int32_t id : ref.hit) leaks += id < 0;
     CHECK(leaks == 0);
     const DeviceInfo dev = clrt_test::test_device();
-    for (const auto& [name, cfg] : builds(dev)) {
+    for (const auto& [name, cfg] : clrt_test::kernel_builds(dev)) {
       for (Accel accel : {Accel::None, Accel::Bvh}) {
         INFO(name << ", " << accel_name(accel));
         const Image img = render(cfg, wall, W, H, 0, accel);

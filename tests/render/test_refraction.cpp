@@ -21,12 +21,6 @@ namespace {
 // 157 x 118: partial work-item blocks at the right and bottom edges.
 constexpr int kW = 157, kH = 118;
 
-// The builds these tests cover: the default (robust, specialized) at 16 and 1
-// lanes, the generic kernel, and fp64 where the device has it.
-std::vector<std::pair<std::string, KernelConfig>> builds(const DeviceInfo& dev) {
-  return clrt_test::kernel_builds(dev);
-}
-
 Image render(const KernelConfig& cfg, const Scene& s, int w, int h, int depth, FrameStats* stats = nullptr) {
   Renderer r = clrt_test::renderer(cfg);
   r.prepare(s, w, h, depth);
@@ -77,7 +71,7 @@ TEST_CASE("the reference totally reflects past the critical angle, from the came
 
 TEST_CASE("the kernel totally reflects past the critical angle, from the camera's medium", "[opencl][refraction]") {
   const DeviceInfo dev = clrt_test::test_device();
-  for (const auto& [name, cfg] : builds(dev)) {
+  for (const auto& [name, cfg] : clrt_test::kernel_builds(dev)) {
     for (double offset : {6.0, 6.6, 6.7, 8.0}) {
       INFO(name << ", offset " << offset);
       const Scene s = glass_around_camera(offset);
@@ -111,7 +105,7 @@ TEST_CASE("a transparent sphere of index 1 is the book's plain transparency", "[
   CHECK(within_tolerance(c));
   // ... and the kernel gives the same image.
   const DeviceInfo dev = clrt_test::test_device();
-  for (const auto& [name, cfg] : builds(dev)) {
+  for (const auto& [name, cfg] : clrt_test::kernel_builds(dev)) {
     INFO(name);
     const Comparison k = compare_images(render(cfg, with, kW, kH, 2), render_reference(without, kW, kH, 0));
     CHECK(within_tolerance(k));
@@ -150,7 +144,7 @@ TEST_CASE("OpenCL matches the reference on the refraction scene", "[opencl][refr
   const DeviceInfo dev = clrt_test::test_device();
   for (int depth : {1, 2, 6}) {
     const Image ref = render_reference(s, kW, kH, depth);
-    for (const auto& [name, cfg] : builds(dev)) {
+    for (const auto& [name, cfg] : clrt_test::kernel_builds(dev)) {
       INFO(name << ", depth " << depth);
       const Comparison c = compare_images(render(cfg, s, kW, kH, depth), ref);
       INFO("off by > 1: " << c.off_by_gt1 << ", max " << c.max_abs_8bit << ", hit flips " << c.hit_flips);
@@ -221,7 +215,7 @@ TEST_CASE("ray counters count refracted rays", "[opencl][refraction][rays]") {
   const int W = 37, H = 11, depth = 3;
   const uint64_t pixels = uint64_t(W) * H;
   const DeviceInfo dev = clrt_test::test_device();
-  for (const auto& [name, base] : builds(dev)) {
+  for (const auto& [name, base] : clrt_test::kernel_builds(dev)) {
     INFO(name);
     KernelConfig cfg = base;
     cfg.count_rays = true;
