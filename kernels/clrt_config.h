@@ -29,6 +29,11 @@
  *   CLRT_OUT_RGBA8       store 8-bit RGBA (the canvas rule) instead of float
  *                        RGB (clrt_lanes.h: TO_CANVAS)
  *   CLRT_OUT_CLASSES     store each pixel's hit sphere and shadow mask
+ *   CLRT_SUBSAMPLE       the book's subsampling (host/scene/sampling.hpp):
+ *                        0 off (default), CLRT_SUBSAMPLE_SHADE or
+ *                        CLRT_SUBSAMPLE_INTERPOLATE; a frame is two launches
+ *                        per tile, the kernel's `pass` argument picks the
+ *                        even or odd columns (trace.cl)
  *   CLRT_LANES           pixels per work-item: 1 (when absent), 4, 8 or 16;
  *                        the host picks it (default_lanes(), build_options.hpp)
  *   CLRT_PACKET_ROWS     rows of the work-item's block of pixels (1 when
@@ -114,6 +119,12 @@
 #define CLRT_HAS_TRIANGLES 1
 #endif
 #endif
+
+#ifndef CLRT_SUBSAMPLE
+#define CLRT_SUBSAMPLE 0
+#endif
+#define CLRT_SUBSAMPLE_SHADE 1
+#define CLRT_SUBSAMPLE_INTERPOLATE 2
 
 #ifndef CLRT_LANES
 #define CLRT_LANES 1

@@ -191,4 +191,65 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
 }
 #endif /* CLRT_BVH */
 
+/* No assumed primary hit: the search decides (see below). */
+#define ASSUME_NOTHING (-2)
+
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
+/* Subsampling, shade mode (host/scene/sampling.hpp): a camera ray whose pixel's
+ * neighbours hit the same primitive is tested against that primitive only.
+ * `assumed` per lane: a primitive id, -1 (both neighbours missed: no hit,
+ * no test) or ASSUME_NOTHING. Returns the hit per lane of `alive`, or
+ * ASSUME_NOTHING where the closest_intersection() search must decide (no
+ * assumption, or the ray passes the assumed primitive by). Lanes that
+ * assume the same primitive test it together; the loop runs once per
+ * distinct id among the lanes (mostly once: the block's pixels are
+ * neighbours). */
+/* The closest hit in (tmin, infinity) on primitive `id` (uniform), per lane;
+ * infinity on a miss. */
+CLRT_INLINE lreal primitive_distance(const vec3* O, const vec3* D, real tmin, int id, const scene_data* scene) {
+  __global const clrt_params* params = scene->params;
+  lreal t = REAL_INFINITY;
+  if (id < CLRT_SPHERE_COUNT(params)) {
+    lreal t1, t2;
+    intersect(O, D, scene->spheres, id, (lint)0, &t1, &t2);
+    t = ((tmin < t1) & (t1 < t)) ? t1 : t; /* both roots, as closest_intersection() takes them */
+    t = ((tmin < t2) & (t2 < t)) ? t2 : t;
+    return t;
+  }
+#if CLRT_HAS_PLANES
+  if (id < TRIANGLE_ID0(params)) {
+    const lreal d = plane_distance(O, D, &scene->planes[id - PLANE_ID0(params)]);
+    return ((tmin < d) & (d < t)) ? d : t;
+  }
+#endif
+#if CLRT_HAS_TRIANGLES
+  {
+    const ray_shear shear = shear_of(D);
+    const lreal d = triangle_distance(O, &shear, &scene->triangles[id - TRIANGLE_ID0(params)]);
+    t = ((tmin < d) & (d < t)) ? d : t;
+  }
+#endif
+  return t;
+}
+
+CLRT_INLINE lint assumed_intersection(const vec3* O, const vec3* D, real tmin, lint assumed, lint alive,
+                                      const scene_data* scene, lreal* t_out, lint* tests) {
+  lint hit = (alive & (assumed == (lint)-1)) ? (lint)-1 : (lint)ASSUME_NOTHING;
+  lreal t = REAL_INFINITY;
+  lint todo = alive & (assumed >= (lint)0);
+  while (ANY(todo)) {
+    const int id = LANE_MIN(todo ? assumed : (lint)INT_MAX);
+    const lint these = todo & (assumed == (lint)id);
+    const lreal d = primitive_distance(O, D, tmin, id, scene);
+    const lint found = these & (d < REAL_INFINITY);
+    hit = found ? (lint)id : hit;
+    t = found ? d : t;
+    *tests += these ? (lint)1 : (lint)0;
+    todo &= !these;
+  }
+  *t_out = t;
+  return hit;
+}
+#endif
+
 #endif /* CLRT_INTERSECT_H */

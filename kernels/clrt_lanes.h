@@ -108,6 +108,7 @@ inline int lane_min4(int4 x) {
 #define AS_LINT(x) as_int(x)
 #define AS_LREAL(i) as_float(i)
 #define TO_LINT(x) ((int)(x))
+#define LOAD_LANES(lanes) ((lanes)[0])
 #else
 #define CONCAT_TOKENS(a, b) a##b
 #define CONCAT_EXPANDED(a, b) CONCAT_TOKENS(a, b) /* expands CLRT_LANES first */
@@ -116,6 +117,8 @@ inline int lane_min4(int4 x) {
 #define TO_LINT(x) CONCAT_EXPANDED(convert_int, CLRT_LANES)(x) /* truncates, like (int) */
 /* Stores the lanes of `value` to the array `lanes` (one element per lane). */
 #define STORE_LANES(lanes, value) CONCAT_EXPANDED(vstore, CLRT_LANES)((value), 0, (lanes))
+/* The lanes' values from the array `lanes` (one int per lane). */
+#define LOAD_LANES(lanes) CONCAT_EXPANDED(vload, CLRT_LANES)(0, (lanes))
 #endif
 
 /* ---- the stored colour (CLRT_OUT_RGBA8) --------------------------------- */

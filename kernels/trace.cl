@@ -27,11 +27,19 @@
 #include "clrt_math.h"
 #include "clrt_shade.h"
 
+/* The direction of the camera ray through the viewport point (dx, dy, dz),
+ * rotated by the camera's m. */
+CLRT_INLINE vec3 camera_direction(const lreal dx, const lreal dy, const real* m, const real dz) {
+  return v3(m[0] * dx + m[1] * dy + m[2] * dz, m[3] * dx + m[4] * dy + m[5] * dz, m[6] * dx + m[7] * dy + m[8] * dz);
+}
+
 /* One camera ray per lane, through the viewport point (dx, dy) (before the
  * camera rotation m), and the rays it spawns: the book's TraceRay without
  * recursion, in the lanes of `active`. Returns its colour; `classify` 1 (a
  * pixel's first sample) stores its primary hit and blocked lights in *hit_id
- * and *shadow_mask, 2 its primary hit only, 0 neither.
+ * and *shadow_mask, 2 its primary hit only, 0 neither. `assumed` is the
+ * primary hit subsampling assumes per lane (assumed_intersection(),
+ * clrt_intersect.h; used by CLRT_SUBSAMPLE_SHADE only).
  *
  * TraceRay's colour is linear in its children's colours, so the walk carries
  * each ray's weight (the product of the shares along its path) and adds
@@ -52,9 +60,9 @@
  * and level in float builds (docs/performance.md, "Refraction"). */
 CLRT_INLINE vec3 trace_camera_ray(const lreal dx, const lreal dy, const real* m, const real dz, const vec3 camera,
                                   const real epsilon, const vec3 background, const int depth, const int classify,
-                                  const lint active, const scene_data* scene, lint* hit_id, lint* shadow_mask,
-                                  lane_ray_counts* counts) {
-  vec3 D = v3(m[0] * dx + m[1] * dy + m[2] * dz, m[3] * dx + m[4] * dy + m[5] * dz, m[6] * dx + m[7] * dy + m[8] * dz);
+                                  const lint active, const lint assumed, const scene_data* scene, lint* hit_id,
+                                  lint* shadow_mask, lane_ray_counts* counts) {
+  vec3 D = camera_direction(dx, dy, m, dz);
   vec3 O = camera;
   COUNT_IN_LANES(counts->primary, active, 1); /* one primary ray per lane and sample */
 
@@ -74,7 +82,22 @@ CLRT_INLINE vec3 trace_camera_ray(const lreal dx, const lreal dy, const real* m,
   for (;;) {
     lreal t;
     lint tests = 0;
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
+    /* camera rays: the assumed primitive first; the search where it cannot say */
+    lint hit = level == 0 ? assumed_intersection(&O, &D, tmin, assumed, alive, scene, &t, &tests)
+                          : (lint)ASSUME_NOTHING;
+    const lint search = alive & (hit == (lint)ASSUME_NOTHING);
+    if (ANY(search)) {
+      lreal searched_t;
+      lint searched_tests = 0;
+      const lint searched = closest_intersection(&O, &D, tmin, REAL_INFINITY, self, scene, &searched_t, &searched_tests);
+      hit = search ? searched : hit;
+      t = search ? searched_t : t;
+      tests += search ? searched_tests : (lint)0;
+    }
+#else
     const lint hit = closest_intersection(&O, &D, tmin, REAL_INFINITY, self, scene, &t, &tests);
+#endif
     COUNT_IN_LANES(counts->sphere_tests, alive, tests);
     const lint miss = alive & (hit < 0);
     result = vsel(miss, vadd(result, vscale(weight, background)), result);
@@ -168,14 +191,34 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
                      __global clrt_ray_counts* ray_counts, const int x0, const int y0, const int tile_w,
                      const int tile_h, __global const clrt_bvh_node* nodes, __global const int* primitives,
                      __global const clrt_plane* planes, __global const clrt_triangle* triangles,
-                     __global const clrt_material* materials) {
+                     __global const clrt_material* materials, const int pass) {
   const int gx = (int)get_global_id(0), gy = (int)get_global_id(1);
   /* first pixel of this work-item in the tile: its lanes are a block of
    * CLRT_PACKET_COLS x CLRT_PACKET_ROWS pixels, row by row */
   const int px = gx * CLRT_PACKET_COLS, py = gy * CLRT_PACKET_ROWS;
+#if CLRT_SUBSAMPLE
+  /* Subsampling (host/scene/sampling.hpp), two launches, `pass` 0 then 1:
+   *   shade:       pass 0 finds the camera hits of the image's even columns
+   *                (no shading); pass 1 shades every pixel, even ones on
+   *                their own hit, odd ones on their neighbours' where they
+   *                agree (assumed_intersection()); a block searches only
+   *                when one of its lanes has no hit to go on;
+   *   interpolate: pass 0 traces the even columns; pass 1 the odd ones,
+   *                interpolating where the neighbours agree.
+   * A strided launch's block spans every other column of the tile: tile
+   * column first_col + 2 (px + lane column). */
+  const int strided = CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE || pass == 0;
+  const int first_col = strided ? (pass - x0) & 1 : 0; /* global columns of parity `pass` */
+  const int col_step = strided ? 2 : 1;
+  const int pass_w = strided ? (tile_w - first_col + 1) / 2 : tile_w;
+  if (px >= pass_w || py >= tile_h) return;
+  const lint tile_col = first_col + col_step * (px + LANE_IOTA % CLRT_PACKET_COLS);
+#else
   if (px >= tile_w || py >= tile_h) return;
+  const lint tile_col = px + LANE_IOTA % CLRT_PACKET_COLS;
+#endif
   const int W = params->width, H = params->height;
-  const lint col = x0 + px + LANE_IOTA % CLRT_PACKET_COLS;
+  const lint col = x0 + tile_col;
   const lint row = y0 + py + LANE_IOTA / CLRT_PACKET_COLS;
   const lint x = col - W / 2;
   const lint y = H / 2 - 1 - row;
@@ -204,14 +247,112 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
   const int spp = CLRT_SAMPLES_PER_AXIS(params);
   lint hit_id = -1, shadow_mask = 0;
   vec3 result;
+  lint assumed = ASSUME_NOTHING;
+  lint traced = MASK_TRUE; /* lanes that trace their camera ray */
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
+  if (pass == 0) {
+    /* The even columns' camera hits, for pass 1 (the one ray through (x, y),
+     * as trace_camera_ray() casts it) */
+    const lreal dx = TO_LREAL(x) * viewport_w / (real)W;
+    const lreal dy = TO_LREAL(y) * viewport_h / (real)H;
+    const vec3 D = camera_direction(dx, dy, m, dz);
+    lreal t;
+    lint tests = 0;
+    const lint hit = closest_intersection(&camera, &D, 1, REAL_INFINITY, (lint)-1, &scene, &t, &tests);
+#if CLRT_LANES == 1
+    int hits[1] = {hit}, searched[1] = {tests};
+#else
+    int hits[CLRT_LANES], searched[CLRT_LANES];
+    STORE_LANES(hits, hit);
+    STORE_LANES(searched, tests);
+#endif
+    for (int j = 0; j < CLRT_LANES; ++j) {
+      const int jx = first_col + 2 * (px + j % CLRT_PACKET_COLS), jy = py + j / CLRT_PACKET_COLS;
+      if (jx >= tile_w || jy >= tile_h) continue;
+      aux[(jy * tile_w + jx) * 2] = hits[j];
+#ifdef CLRT_COUNT_RAYS
+      ray_counts[jy * tile_w + jx].sphere_tests = searched[j]; /* pass 1 adds its own */
+#endif
+    }
+    return;
+  }
+#endif
+#if CLRT_SUBSAMPLE
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE
+  vec3 interpolated = v3(0, 0, 0);
+  lint interpolated_shadow = 0;
+#endif
+  if (pass == 1) {
+    /* The primitive both neighbours of an odd column hit (pass 0 stored
+     * their hit ids in aux, and with interpolation their colours in out),
+     * where both exist in the tile (the host gives whole rows, so only the
+     * image's last column lacks one); with shade, an even column's own hit.
+     * Lanes past the tile's edge assume a miss: no work, never stored. */
+    int neighbours[CLRT_LANES];
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE
+    float mean_red[CLRT_LANES], mean_green[CLRT_LANES], mean_blue[CLRT_LANES];
+    int shadow_both[CLRT_LANES];
+#endif
+    for (int j = 0; j < CLRT_LANES; ++j) {
+      const int jx = first_col + col_step * (px + j % CLRT_PACKET_COLS), jy = py + j / CLRT_PACKET_COLS;
+      neighbours[j] = -1;
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE
+      mean_red[j] = mean_green[j] = mean_blue[j] = 0;
+      shadow_both[j] = 0;
+#endif
+      if (jx >= tile_w || jy >= tile_h) continue;
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
+      if (((x0 + jx) & 1) == 0) {
+        neighbours[j] = aux[(jy * tile_w + jx) * 2]; /* found by pass 0's search */
+        continue;
+      }
+#endif
+      neighbours[j] = ASSUME_NOTHING;
+      if (jx < 1 || jx + 1 >= tile_w) continue;
+      const int left = jy * tile_w + jx - 1, right = left + 2;
+      if (aux[left * 2] != aux[right * 2]) continue;
+      neighbours[j] = aux[left * 2];
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE
+      /* the mean of the neighbours' canvas colours (exact in float) */
+#ifdef CLRT_OUT_RGBA8
+      const float4 l = convert_float4(vload4(left, out)), r = convert_float4(vload4(right, out));
+#else
+      const float4 l = convert_float4(convert_uchar4_sat_rte(
+                       (float4)(out[left * 3], out[left * 3 + 1], out[left * 3 + 2], 0))),
+                   r = convert_float4(convert_uchar4_sat_rte(
+                       (float4)(out[right * 3], out[right * 3 + 1], out[right * 3 + 2], 0)));
+#endif
+      mean_red[j] = (l.x + r.x) * 0.5f;
+      mean_green[j] = (l.y + r.y) * 0.5f;
+      mean_blue[j] = (l.z + r.z) * 0.5f;
+      shadow_both[j] = aux[left * 2 + 1] & aux[right * 2 + 1];
+#endif
+    }
+    assumed = LOAD_LANES(neighbours);
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE
+    interpolated = v3(LOAD_LANES(mean_red), LOAD_LANES(mean_green), LOAD_LANES(mean_blue));
+    interpolated_shadow = LOAD_LANES(shadow_both);
+    traced = assumed == (lint)ASSUME_NOTHING;
+#endif
+  }
+#endif
   if (spp == 1) {
     /* The one ray through (x, y), apart from the sample loop below: the
      * loop around it cost the single-ray render 5% of the demo's kernel
      * time (docs/performance.md, "Supersampling"). */
     const lreal dx = TO_LREAL(x) * viewport_w / (real)W;
     const lreal dy = TO_LREAL(y) * viewport_h / (real)H;
-    result = trace_camera_ray(dx, dy, m, dz, camera, epsilon, background, depth, 1, MASK_TRUE, &scene, &hit_id,
-                              &shadow_mask, &counts);
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE
+    result = v3(0, 0, 0);
+    if (ANY(traced))
+#endif
+      result = trace_camera_ray(dx, dy, m, dz, camera, epsilon, background, depth, 1, traced, assumed, &scene,
+                                &hit_id, &shadow_mask, &counts);
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE
+    result = vsel(traced, result, interpolated);
+    hit_id = traced ? hit_id : assumed;
+    shadow_mask = traced ? shadow_mask : interpolated_shadow;
+#endif
   } else {
     /* One loop, one inlined copy of the tracer, for both uniform and
      * adaptive supersampling (each call site of trace_camera_ray() is a
@@ -258,8 +399,10 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
       /* classification: sample 0's hit and shadows; the other corners' hits */
       lint sample_hit = -1;
       const int classify = k == 0 ? 1 : (adaptive && k < 4 ? 2 : 0);
-      const vec3 color = trace_camera_ray(dx, dy, m, dz, camera, epsilon, background, depth, classify, refine, &scene,
-                                          k == 0 ? &hit_id : &sample_hit, &shadow_mask, &counts);
+      /* (the host never subsamples a supersampled frame) */
+      const vec3 color = trace_camera_ray(dx, dy, m, dz, camera, epsilon, background, depth, classify, refine,
+                                          (lint)ASSUME_NOTHING, &scene, k == 0 ? &hit_id : &sample_hit,
+                                          &shadow_mask, &counts);
       if (adaptive && k < 4) {
         corner_color[k] = color;
         corner_hit[k] = k == 0 ? hit_id : sample_hit;
@@ -275,7 +418,8 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
   }
 
   /* One pixel per lane; lanes past the tile's edge are dropped. Only what
-   * the host asked for is stored (CLRT_OUT_*, clrt_config.h). */
+   * the host asked for is stored (CLRT_OUT_*, clrt_config.h), and the hit
+   * ids that subsampling's second launch reads. */
 #if CLRT_LANES == 1
   CANVAS_T red[1] = {TO_CANVAS(result.x)}, green[1] = {TO_CANVAS(result.y)}, blue[1] = {TO_CANVAS(result.z)};
   int hit_ids[1] = {hit_id}, shadow_masks[1] = {shadow_mask};
@@ -288,7 +432,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
   STORE_LANES(red, TO_CANVAS(result.x));
   STORE_LANES(green, TO_CANVAS(result.y));
   STORE_LANES(blue, TO_CANVAS(result.z));
-#ifdef CLRT_OUT_CLASSES
+#if defined(CLRT_OUT_CLASSES) || CLRT_SUBSAMPLE
   int hit_ids[CLRT_LANES], shadow_masks[CLRT_LANES];
   STORE_LANES(hit_ids, hit_id);
   STORE_LANES(shadow_masks, shadow_mask);
@@ -304,7 +448,11 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
 #endif
 #endif
   for (int j = 0; j < CLRT_LANES; ++j) {
+#if CLRT_SUBSAMPLE
+    const int jx = first_col + col_step * (px + j % CLRT_PACKET_COLS), jy = py + j / CLRT_PACKET_COLS;
+#else
     const int jx = px + j % CLRT_PACKET_COLS, jy = py + j / CLRT_PACKET_COLS;
+#endif
     if (jx >= tile_w || jy >= tile_h) continue;
     const int idx = jy * tile_w + jx;
 #ifdef CLRT_OUT_RGBA8
@@ -314,7 +462,12 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     out[idx * 3 + 1] = green[j];
     out[idx * 3 + 2] = blue[j];
 #endif
-#ifdef CLRT_OUT_CLASSES
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
+    /* an even column's hit is pass 0's, which other work-items read now */
+    const int known = ((x0 + jx) & 1) == 0;
+    if (!known) aux[idx * 2 + 0] = hit_ids[j];
+    aux[idx * 2 + 1] = shadow_masks[j];
+#elif defined(CLRT_OUT_CLASSES) || CLRT_SUBSAMPLE
     aux[idx * 2 + 0] = hit_ids[j];
     aux[idx * 2 + 1] = shadow_masks[j];
 #endif
@@ -322,7 +475,11 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     ray_counts[idx].primary = primary[j];
     ray_counts[idx].shadow = shadow[j];
     ray_counts[idx].reflection = reflection[j];
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
+    ray_counts[idx].sphere_tests = sphere_tests[j] + (known ? ray_counts[idx].sphere_tests : 0);
+#else
     ray_counts[idx].sphere_tests = sphere_tests[j];
+#endif
     ray_counts[idx].refraction = refraction[j];
 #endif
   }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "app/compare_report.hpp"
+#include "app/report_header.hpp"
 #include "image/plot.hpp"
 #include "util/csv.hpp"
 #include "util/json_text.hpp"
@@ -100,18 +101,20 @@ std::string accuracy_markdown(const std::vector<AccuracyRow>& rows) {
 }
 
 std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySettings& s, const std::string& device) {
-  nlohmann::json out = {
-      {"device", device}, {"width", s.width}, {"height", s.height}, {"spp", s.spp}, {"repeat", s.repeat}};
-  nlohmann::json arr = nlohmann::json::array();
+  nlohmann::ordered_json out = header_json(report_header(device));
+  out.update(nlohmann::ordered_json{
+      {"device", device}, {"width", s.width}, {"height", s.height}, {"spp", s.spp}, {"repeat", s.repeat}});
+  nlohmann::ordered_json arr = nlohmann::ordered_json::array();
   for (const auto& r : rows) {
-    nlohmann::json j = {{"scene", r.scene}, {"variant", r.variant}, {"depth", r.depth}, {"supported", r.supported}};
+    nlohmann::ordered_json j = {
+        {"scene", r.scene}, {"variant", r.variant}, {"depth", r.depth}, {"supported", r.supported}};
     if (!r.supported) {
       j["note"] = r.note;
     } else {
-      j.update({{"kernel_ms_median", r.median_ms},
-                {"kernel_ms", r.kernel_ms},
-                {"kernel", stats_json(summarize(r.kernel_ms))},
-                {"kernel_time_source", r.time_source()}});
+      j.update(nlohmann::ordered_json{{"kernel_ms_median", r.median_ms},
+                                      {"kernel_ms", r.kernel_ms},
+                                      {"kernel", nlohmann::ordered_json(stats_json(summarize(r.kernel_ms)))},
+                                      {"kernel_time_source", r.time_source()}});
       j.update(comparison_json(r.error));
     }
     arr.push_back(j);
@@ -120,24 +123,34 @@ std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySe
   return json_text(out);
 }
 
-void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path) {
-  std::ostringstream f;
-  f << "scene,variant,depth,supported,kernel_ms_median,kernel_time_source,pixels,off_by_gt1,percent_off_by_gt1,"
-       "max_abs_8bit,max_abs_float,rmse_8bit,rmse_float,psnr_8bit,psnr_float,nan_inf,hit_flips,shadow_flips\n";
+std::string accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& device) {
+  const ReportHeader h = report_header(device);
+  CsvTable t;
   for (const auto& r : rows) {
-    const Comparison& e = r.error;
-    f << csv_field(r.scene) << ',' << csv_field(r.variant) << ',' << r.depth << ',' << (r.supported ? 1 : 0) << ',';
-    if (!r.supported) {
-      f << ",,,,,,,,,,,,,\n";
-      continue;
-    }
-    f << r.median_ms << ',' << r.time_source() << ',' << e.pixels << ',' << e.off_by_gt1 << ','
-      << e.percent_off_by_gt1() << ',' << e.max_abs_8bit << ',' << e.max_abs_float << ',' << e.rmse_8bit << ','
-      << e.rmse_float << ',' << (std::isinf(e.psnr_8bit) ? "inf" : std::to_string(e.psnr_8bit)) << ','
-      << (std::isinf(e.psnr_float) ? "inf" : std::to_string(e.psnr_float)) << ',' << e.nan_inf << ',' << e.hit_flips
-      << ',' << e.shadow_flips << '\n';
+    t.row();
+    header_csv(t, h);
+    t.set("device", device);
+    t.set("scene", r.scene);
+    t.set("variant", r.variant);
+    t.set_number("depth", r.depth);
+    t.set_number("supported", r.supported ? 1 : 0);
+    // An unsupported variant: its measured columns stay empty.
+    t.set("kernel_ms_median", r.supported ? csv_number(r.median_ms) : "");
+    t.set("kernel_time_source", r.supported ? r.time_source() : "");
+    if (r.supported)
+      comparison_csv(t, r.error);
+    else
+      for (auto& m : comparison_metrics(r.error)) t.set(m.first, "");
   }
-  write_text_atomic(path, f.str(), "CSV");
+  if (rows.empty()) {  // the header alone
+    t.row();
+    header_csv(t, h);
+  }
+  return rows.empty() ? csv_record(t.names()) : t.text();
+}
+
+void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path, const std::string& device) {
+  write_text_atomic(path, accuracy_csv(rows, device), "CSV");
 }
 
 void write_accuracy_plot(const std::vector<AccuracyRow>& rows, const std::string& path, const std::string& title) {

@@ -5,16 +5,17 @@
 #include <cstdlib>
 
 #include "app/frame_report.hpp"
+#include "app/report_header.hpp"
 #include "cl/launch_timing.hpp"
 #include "util/stats.hpp"
 
 namespace clrt {
 
-nlohmann::json bench_json(const BenchResult& r) {
+nlohmann::ordered_json bench_json(const BenchResult& r) {
   const char* pocl_cache = std::getenv("POCL_KERNEL_CACHE");
-  nlohmann::json peaks = nlohmann::json::array();
+  nlohmann::ordered_json peaks = nlohmann::ordered_json::array();
   for (const auto& p : r.peaks) {
-    nlohmann::json j = {{"measured", p.measured}};
+    nlohmann::ordered_json j = {{"measured", p.measured}};
     if (p.measured)
       j.update({{"gflops", p.gflops},
                 {"launch_ms", stats_json(p.launch_ms)},
@@ -24,7 +25,8 @@ nlohmann::json bench_json(const BenchResult& r) {
     peaks.push_back(j);
   }
   // Flat *_ms / *_median keys are the medians of the matching Stats objects.
-  return {
+  nlohmann::ordered_json out = header_json(report_header(r.device));
+  out.update(nlohmann::ordered_json{
       {"device", r.device},
       {"build_options", r.options},
       {"width", r.width},
@@ -32,6 +34,7 @@ nlohmann::json bench_json(const BenchResult& r) {
       {"height", r.height},
       {"depth", r.depth},
       {"spp", r.spp},
+      {"subsample", subsample_name(r.subsample)},
       {"repeat", r.repeat},
       {"build_cold", stats_json(r.build_cold)},
       {"build_cold_ms", r.build_cold.median},
@@ -70,7 +73,7 @@ nlohmann::json bench_json(const BenchResult& r) {
       {"ns_per_sphere_test", r.ns_per_sphere_test},
       {"flop_per_sphere_test", kFlopPerSphereTest},
       {"gflops", r.gflops},
-      {"peak_gflops", r.peak_gflops > 0 ? nlohmann::json(r.peak_gflops) : nlohmann::json()},
+      {"peak_gflops", r.peak_gflops > 0 ? nlohmann::ordered_json(r.peak_gflops) : nlohmann::ordered_json()},
       {"peaks", peaks},
       {"reference", stats_json(r.reference)},
       {"reference_ms", r.reference.median},
@@ -88,16 +91,20 @@ nlohmann::json bench_json(const BenchResult& r) {
       {"embree_threads", r.embree_threads},
       {"speedup_vs_embree", stats_json(r.speedup_vs_embree)},
       {"opencl_speedup_vs_embree", r.speedup_vs_embree.median},
-      {"embree_vs_omp_differ", r.embree_vs_omp_differ >= 0 ? nlohmann::json(r.embree_vs_omp_differ) : nlohmann::json()},
-      {"embree_vs_omp_max_levels",
-       r.embree_vs_omp_max_levels >= 0 ? nlohmann::json(r.embree_vs_omp_max_levels) : nlohmann::json()}};
+      {"embree_vs_omp_differ",
+       r.embree_vs_omp_differ >= 0 ? nlohmann::ordered_json(r.embree_vs_omp_differ) : nlohmann::ordered_json()},
+      {"embree_vs_omp_max_levels", r.embree_vs_omp_max_levels >= 0 ? nlohmann::ordered_json(r.embree_vs_omp_max_levels)
+                                                                   : nlohmann::ordered_json()}});
+  return out;
 }
 
 void print_bench(const BenchResult& r) {
   const std::string source = time_source_note(r.host_timed_launches, r.launches);
   std::printf("device         %s\n", r.device.c_str());
-  std::printf("image          %dx%d, depth %d, %dx%d samples per pixel, %s, %d timed rounds after a warm-up\n", r.width,
-              r.height, r.depth, r.spp, r.spp, r.rgba8 ? "8-bit RGBA frames" : "float RGB frames", r.repeat);
+  std::printf("image          %dx%d, depth %d, %dx%d samples per pixel%s, %s, %d timed rounds after a warm-up\n",
+              r.width, r.height, r.depth, r.spp, r.spp,
+              r.subsample == Subsample::Off ? "" : (", subsampled (" + subsample_name(r.subsample) + ")").c_str(),
+              r.rgba8 ? "8-bit RGBA frames" : "float RGB frames", r.repeat);
   std::printf("options        %s\n", r.options.c_str());
   std::printf("build cold     %s (no program cache)\n", format_stats(r.build_cold, "ms", 1).c_str());
   std::printf("build warm     %s%s\n", format_stats(r.build_warm, "ms", 1).c_str(),

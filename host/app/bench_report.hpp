@@ -7,9 +7,9 @@
 
 namespace clrt {
 
-// Every figure of the result; flat *_ms / *_median keys repeat the medians
-// of the matching Stats objects.
-nlohmann::json bench_json(const BenchResult& r);
+// The report header (report_header.hpp), then every figure of the result;
+// flat *_ms / *_median keys repeat the medians of the matching Stats objects.
+nlohmann::ordered_json bench_json(const BenchResult& r);
 void print_bench(const BenchResult& r);
 
 }  // namespace clrt

@@ -16,12 +16,18 @@
 namespace clrt {
 
 namespace {
-std::vector<Precision> parse_variants(const std::string& list) {
-  std::vector<Precision> out;
+std::string default_variant_list() {
+  std::string list;
+  for (const AccuracyVariant& v : default_accuracy_variants()) list += (list.empty() ? "" : ",") + v.name();
+  return list;
+}
+
+std::vector<AccuracyVariant> parse_variants(const std::string& list) {
+  std::vector<AccuracyVariant> out;
   std::stringstream ss(list);
   std::string name;
   while (std::getline(ss, name, ','))
-    if (!name.empty()) out.push_back(parse_precision(name));
+    if (!name.empty()) out.push_back(parse_accuracy_variant(name));
   if (out.empty()) throw UserError("--variants: empty list");
   return out;
 }
@@ -34,7 +40,7 @@ void add_accuracy_command(CLI::App& app) {
     DeviceOptions device;
     KernelOptions kernel;
     int repeat = 7;
-    std::string variants = "naive,stable,robust,fast,fp64";
+    std::string variants = default_variant_list();
     std::string csv, plot;
     bool json = false, markdown = false;
   };
@@ -43,11 +49,13 @@ void add_accuracy_command(CLI::App& app) {
       "accuracy",
       "Kernel time (median of --repeat after a warm-up) against error vs the reference, per variant x scene");
   cmd->add_option("scenes", o->scenes, "Scene files (JSON)")->required()->expected(1, -1);
-  o->image.add(cmd);
+  o->image.add(cmd, /*with_depth=*/true, /*with_spp=*/true, /*with_subsample=*/false);  // a variant here
   o->device.add(cmd, /*several=*/false);
   o->kernel.add(cmd, /*with_variant=*/false);
   add_repeat_option(cmd, o->repeat, "Timed kernel runs per variant after one warm-up");
-  cmd->add_option("--variants", o->variants, "Comma list of variants")->capture_default_str();
+  cmd->add_option("--variants", o->variants,
+                  "Comma list of variants: precisions, each optionally +subsample (the book's subsampling)")
+      ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print one JSON object instead of the table");
   cmd->add_flag("--markdown", o->markdown, "Print the table as Markdown");
   cmd->add_option("--csv", o->csv, "Also write the rows as CSV to this file");
@@ -70,7 +78,7 @@ void add_accuracy_command(CLI::App& app) {
     const DeviceInfo dev = o->device.one();
     const std::string device = dev.name;
     auto rows = measure_accuracy(scenes, dev, s);
-    if (!o->csv.empty()) write_accuracy_csv(rows, o->csv);
+    if (!o->csv.empty()) write_accuracy_csv(rows, o->csv, device);
     if (!o->plot.empty())
       write_accuracy_plot(
           rows, o->plot,

@@ -49,6 +49,7 @@ void add_bench_command(CLI::App& app) {
     s.height = o->image.height;
     s.depth = o->image.effective_depth(scene);
     s.spp = o->image.spp;
+    s.subsample = o->image.subsample;
     s.adaptive = o->image.adaptive;
     s.repeat = *repeat;
     s.omp = !*no_omp;
@@ -62,7 +63,7 @@ void add_bench_command(CLI::App& app) {
     settings.overlap_downloads = !*no_overlap;
     BenchResult r = run_bench(scene, o->device.devices(), settings, s);
     if (*as_json) {
-      nlohmann::json j = bench_json(r);
+      nlohmann::ordered_json j = bench_json(r);
       j["scene"] = o->scene_path;
       j["precision"] = o->kernel.precision;
       std::printf("%s\n", json_text(j).c_str());

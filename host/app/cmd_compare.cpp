@@ -7,6 +7,7 @@
 #include "app/compare_report.hpp"
 #include "app/engine.hpp"
 #include "app/options.hpp"
+#include "app/report_header.hpp"
 #include "cl/launch_timing.hpp"
 #include "eval/compare.hpp"
 #include "image/image_file.hpp"
@@ -59,39 +60,47 @@ void add_compare_command(CLI::App& app) {
     if (!diff->empty()) write_rgb8(diff_image(img, ref), img.width, img.height, *diff);
     const std::string source = time_source(cl_run.frame.host_timed_launches, cl_run.frame.launches);
     if (*as_json) {
-      nlohmann::json j = {{"scene", o->scene_path},
-                          {"width", o->image.width},
-                          {"height", o->image.height},
-                          {"depth", depth},
-                          {"spp", o->image.spp},
-                          {"reference_ms", ref_run.wall_ms},
-                          {"worst_pixel",
-                           {{"x", c.worst_x},
-                            {"y", c.worst_y},
-                            {"value", {c.worst_test[0], c.worst_test[1], c.worst_test[2]}},
-                            {"reference", {c.worst_reference[0], c.worst_reference[1], c.worst_reference[2]}}}}};
+      nlohmann::ordered_json j = header_json(report_header(classified ? cl_run.device : std::string()));
+      j.update(nlohmann::ordered_json{
+          {"scene", o->scene_path},
+          {"width", o->image.width},
+          {"height", o->image.height},
+          {"depth", depth},
+          {"spp", o->image.spp},
+          {"subsample", subsample_name(o->image.subsample)},
+          {"reference_ms", ref_run.wall_ms},
+          {"worst_pixel",
+           {{"x", c.worst_x},
+            {"y", c.worst_y},
+            {"value", {c.worst_test[0], c.worst_test[1], c.worst_test[2]}},
+            {"reference", {c.worst_reference[0], c.worst_reference[1], c.worst_reference[2]}}}}});
       if (classified)
-        j.update({{"precision", o->kernel.precision},
-                  {"device", cl_run.device},
-                  {"build_options", cl_run.options},
-                  {"opencl_kernel_ms", cl_run.frame.kernel_ms},
-                  {"opencl_kernel_time_source", source},
-                  {"opencl_build_ms", cl_run.frame.build_ms},
-                  {"opencl_build_cached", cl_run.frame.build_cached},
-                  {"opencl_total_ms", cl_run.wall_ms}});
+        j.update(nlohmann::ordered_json{{"precision", o->kernel.precision},
+                                        {"device", cl_run.device},
+                                        {"build_options", cl_run.options},
+                                        {"opencl_kernel_ms", cl_run.frame.kernel_ms},
+                                        {"opencl_kernel_time_source", source},
+                                        {"opencl_build_ms", cl_run.frame.build_ms},
+                                        {"opencl_build_cached", cl_run.frame.build_cached},
+                                        {"opencl_total_ms", cl_run.wall_ms}});
       else
         j["image"] = *image;
       j.update(comparison_json(c));
-      if (!classified) j["hit_flips"] = j["shadow_flips"] = nullptr;
+      if (!classified) j["hit_flip_pixels"] = j["shadow_flip_pixels"] = nullptr;
       if (limits->any()) {
-        j["fail_percent"] = limits->fail_percent >= 0 ? nlohmann::json(limits->fail_percent) : nlohmann::json();
-        j["fail_max"] = limits->fail_max >= 0 ? nlohmann::json(limits->fail_max) : nlohmann::json();
+        j["fail_percent"] =
+            limits->fail_percent >= 0 ? nlohmann::ordered_json(limits->fail_percent) : nlohmann::ordered_json();
+        j["fail_max_8bit"] =
+            limits->fail_max >= 0 ? nlohmann::ordered_json(limits->fail_max) : nlohmann::ordered_json();
         j["verdict"] = verdict.pass ? "pass" : "fail";
       }
       std::printf("%s\n", json_text(j).c_str());
     } else {
-      std::printf("scene          %s  %dx%d  depth %d  spp %d  precision %s\n", o->scene_path.c_str(), o->image.width,
-                  o->image.height, depth, o->image.spp, classified ? o->kernel.precision.c_str() : "-");
+      std::printf(
+          "scene          %s  %dx%d  depth %d  spp %d%s  precision %s\n", o->scene_path.c_str(), o->image.width,
+          o->image.height, depth, o->image.spp,
+          o->image.subsample == Subsample::Off ? "" : ("  subsample " + subsample_name(o->image.subsample)).c_str(),
+          classified ? o->kernel.precision.c_str() : "-");
       if (classified)
         std::printf("device         %s\n", cl_run.device.c_str());
       else

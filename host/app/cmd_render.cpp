@@ -1,6 +1,7 @@
 // cmd_render.cpp - `clrt render SCENE -o OUT`.
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "app/engine.hpp"
 #include "app/frame_report.hpp"
@@ -11,28 +12,74 @@
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 
+#ifndef CLRT_VERSION
+#define CLRT_VERSION "unknown"
+#endif
+
 namespace clrt {
+
+namespace {
+
+// How the pixels were sampled, in words: "spp 1", "spp 4, adaptive 8",
+// "spp 1, subsample shade".
+std::string sampling_words(const Sampling& s) {
+  std::string w = "spp " + std::to_string(s.spp);
+  if (s.adaptive()) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%g", s.adaptive_threshold);
+    w += std::string(", adaptive ") + t;
+  }
+  if (s.subsample != Subsample::Off) w += ", subsample " + subsample_name(s.subsample);
+  return w;
+}
+
+// What the image says about itself (README, "Image files").
+ImageMetadata render_metadata(const RenderOptions& o, int depth, const EngineRun& run) {
+  const std::string precision = o.engine == "opencl" ? o.kernel.precision : "reference (scalar double)";
+  const std::string size = std::to_string(o.image.width) + "x" + std::to_string(o.image.height);
+  const std::string sampling = sampling_words(o.image.sampling());
+  return {
+      {"Software", std::string("clrt ") + CLRT_VERSION},
+      {"ImageDescription", "clrt render of " + o.scene_path + ": " + size + ", depth " + std::to_string(depth) +
+                               ", precision " + precision + ", " + sampling + ", on " + run.device},
+      {"clrt:version", CLRT_VERSION},
+      {"clrt:scene", o.scene_path},
+      {"clrt:width", std::to_string(o.image.width)},
+      {"clrt:height", std::to_string(o.image.height)},
+      {"clrt:depth", std::to_string(depth)},
+      {"clrt:precision", precision},
+      {"clrt:sampling", sampling},
+      {"clrt:engine", o.engine},
+      {"clrt:device", run.device},
+  };
+}
+
+}  // namespace
 
 void add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   auto out = std::make_shared<std::string>();
+  auto format = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("render", "Render a scene to an image (png, ppm, exr, ...)");
   o->add(cmd, /*with_engine=*/true);
   cmd->add_option("-o,--output", *out,
                   "Output image; the extension picks the format ('-' = PNG on standard output, as are devices and "
                   "FIFOs named without an extension)")
       ->required();
-  cmd->callback([o, out] {
+  cmd->add_option("--format", *format,
+                  "Image format, as an extension (png, ppm, exr, pfm, ...), instead of OUT's: for '-o -' and "
+                  "devices (unset: OUT's extension; PNG for '-' and names without one)");
+  cmd->callback([o, out, format] {
     o->validate();
-    const OutputTarget target = check_output_format(*out);  // fail before rendering
+    const OutputTarget target = check_output_format(*out, *format);  // fail before rendering
     Scene scene = load_scene(o->scene_path);
     int depth = o->image.effective_depth(scene);
     EngineRun run;
     // The kernel writes what the file needs: 8-bit RGBA for 8-bit formats,
     // float colour for float ones, never the per-pixel classification.
-    const FrameContents contents{output_pixel_format(*out), /*classes=*/false};
+    const FrameContents contents{output_pixel_format(*out, *format), /*classes=*/false};
     Image img = run_engine(o->engine, scene, *o, depth, &run, contents);
-    write_image(img, *out);
+    write_image(img, *out, render_metadata(*o, depth, run), *format);
     // The report goes to stderr when the image itself goes to stdout.
     std::FILE* report = target.kind == OutputKind::File ? stdout : stderr;
     if (o->engine == "opencl")

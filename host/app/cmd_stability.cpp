@@ -21,7 +21,7 @@ void add_stability_command(CLI::App& app) {
   };
   auto o = std::make_shared<Opts>();
   auto* cmd = app.add_subcommand("stability", "Run the generated stiff/extreme suite on every precision variant");
-  o->image.add(cmd, /*with_depth=*/false, /*with_spp=*/false);  // each case has its own depth, one ray per pixel
+  o->image.add(cmd, /*with_depth=*/false, /*with_spp=*/false);  // each case has its own depth and sampling
   o->device.add(cmd, /*several=*/false);
   o->kernel.add(cmd, /*with_variant=*/false, /*with_specialize=*/false);  // the suite runs every variant, generic
   cmd->add_flag("--json", o->json, "Print one JSON object");
@@ -31,12 +31,12 @@ void add_stability_command(CLI::App& app) {
     const int width = o->image.width, height = o->image.height;
     const auto cases = stability_suite();
     const DeviceInfo dev = o->device.one();
-    const auto results = run_stability(cases, all_precisions(), width, height, dev, o->kernel.config());
+    const StabilityRun run = run_stability(cases, all_precisions(), width, height, dev, o->kernel.config());
     if (o->json)
-      std::printf("%s\n", json_text(stability_json(dev.name, width, height, cases, results)).c_str());
+      std::printf("%s\n", json_text(stability_json(dev.name, width, height, cases, run)).c_str());
     else
-      print_stability(dev.name, width, height, cases, results);
-    const size_t unmet = count_unmet(results);
+      print_stability(dev.name, width, height, cases, run);
+    const size_t unmet = count_unmet(run.results);
     if (o->check && unmet)
       throw CheckFailure("stability: " + std::to_string(unmet) + " result(s) differ from expectation");
   });

@@ -11,6 +11,7 @@
 #include "image/image_file.hpp"
 #include "scene/scene_json.hpp"
 #include "util/error.hpp"
+#include "util/json_text.hpp"
 #include "util/output_file.hpp"
 #include "util/progress.hpp"
 
@@ -24,6 +25,7 @@ void add_sweep_command(CLI::App& app) {
   auto plot = std::make_shared<std::string>();
   auto repeat = std::make_shared<int>(3);
   auto omp = std::make_shared<bool>(false);
+  auto as_json = std::make_shared<bool>(false);
   auto* cmd = app.add_subcommand("sweep", "Bench figures and error vs reference per recursion depth (and device)");
   o->add(cmd, /*with_engine=*/false);
   cmd->add_option("--depths", *depths, "Depth range A:B, inclusive")->capture_default_str();
@@ -33,7 +35,8 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--plot", *plot, "Write a PNG of time per depth here (and rays per depth to NAME-rays.EXT)");
   add_repeat_option(cmd, *repeat, "Timed kernel launches per depth after a warm-up");
   cmd->add_flag("--omp", *omp, "Also time the OpenMP float tracer at each depth");
-  cmd->callback([o, depths, devices, csv, plot, repeat, omp] {
+  cmd->add_flag("--json", *as_json, "Print one JSON object instead of the table");
+  cmd->callback([o, depths, devices, csv, plot, repeat, omp, as_json] {
     o->validate();
     SweepSettings s;
     parse_depth_range(*depths, s.depth_from, s.depth_to);
@@ -46,6 +49,7 @@ void add_sweep_command(CLI::App& app) {
     s.bench.width = o->image.width;
     s.bench.height = o->image.height;
     s.bench.spp = o->image.spp;
+    s.bench.subsample = o->image.subsample;
     s.bench.adaptive = o->image.adaptive;
     s.bench.repeat = *repeat;
     s.bench.omp = *omp;
@@ -58,15 +62,17 @@ void add_sweep_command(CLI::App& app) {
     }
     auto devs = select_devices(devices->empty() ? o->device.device : *devices);
     auto rows = run_sweep(scene, devs, o->settings(), s);
-    print_sweep(rows);
+    if (!*as_json) print_sweep(rows);
+    // With --json, standard output holds the JSON object alone.
     if (!csv->empty()) {
       write_text_atomic(*csv, sweep_csv(rows), "CSV");
-      std::printf("wrote %s\n", csv->c_str());
+      if (!*as_json) std::printf("wrote %s\n", csv->c_str());
     }
     if (!plot->empty()) {
       std::string second = plot_sweep(rows, *plot, o->scene_path);
-      std::printf("wrote %s and %s\n", plot->c_str(), second.c_str());
+      if (!*as_json) std::printf("wrote %s and %s\n", plot->c_str(), second.c_str());
     }
+    if (*as_json) std::printf("%s\n", json_text(sweep_json(rows, o->scene_path)).c_str());
   });
 }
 

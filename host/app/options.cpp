@@ -9,7 +9,7 @@
 
 namespace clrt {
 
-void ImageOptions::add(CLI::App* cmd, bool with_depth, bool with_spp) {
+void ImageOptions::add(CLI::App* cmd, bool with_depth, bool with_spp, bool with_subsample) {
   cmd->add_option("--width", width, "Image width in pixels")->capture_default_str();
   cmd->add_option("--height", height, "Image height in pixels")->capture_default_str();
   if (with_depth)
@@ -25,6 +25,14 @@ void ImageOptions::add(CLI::App* cmd, bool with_depth, bool with_spp) {
                     "Adaptive supersampling with --spp N >= 3: trace the N x N grid's 4 corner rays first, and the "
                     "rest only where they hit different primitives or differ by more than this many 8-bit levels")
         ->check(CLI::Range(0.0, 1e6))
+        ->default_str("");  // unset: off
+  if (with_spp && with_subsample)
+    cmd->add_option("--subsample", subsample,
+                    "The book's subsampling (one ray per pixel): trace the even columns; an odd column's pixel whose "
+                    "two neighbours hit the same primitive (or both missed) skips the search and is shaded on that "
+                    "hit (shade), or takes their mean colour without a ray (interpolate)")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, Subsample>{{"shade", Subsample::Shade}, {"interpolate", Subsample::Interpolate}}))
         ->default_str("");  // unset: off
 }
 
@@ -43,6 +51,8 @@ void ImageOptions::validate() const {
     throw UserError(
         "--adaptive needs --spp 3 or more (the 4 corners of an N x N grid are all of it at N = 2; got --spp " +
         std::to_string(spp) + ")");
+  if (subsample != Subsample::Off && spp != 1)
+    throw UserError("--subsample needs one sample per pixel (got --spp " + std::to_string(spp) + ")");
 }
 
 void DeviceOptions::add(CLI::App* cmd, bool several) {

@@ -34,9 +34,12 @@ struct ImageOptions {
   // --adaptive T: the book's adaptive supersampling (scene/sampling.hpp);
   // negative = off.
   double adaptive = -1;
+  // --subsample MODE: the book's subsampling (scene/sampling.hpp), spp 1 only.
+  Subsample subsample = Subsample::Off;
 
-  void add(CLI::App* cmd, bool with_depth = true, bool with_spp = true);
-  Sampling sampling() const { return Sampling(spp, adaptive); }
+  // with_subsample: --subsample (commands that compare variants list it as one instead)
+  void add(CLI::App* cmd, bool with_depth = true, bool with_spp = true, bool with_subsample = true);
+  Sampling sampling() const { return Sampling(spp, adaptive, subsample); }
   void validate() const;
   int effective_depth(const Scene& s) const { return depth == kSceneDepth ? s.recursion_depth : depth; }
 };

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "app/report_header.hpp"
 #include "cl/launch_timing.hpp"
 #include "image/plot.hpp"
 #include "util/csv.hpp"
@@ -11,23 +12,44 @@
 namespace clrt {
 
 std::string scaling_csv(const std::vector<ScalingRow>& rows) {
-  std::ostringstream o;
-  o << "spheres,json_bytes,parse_ms,s_per_million_spheres,bvh_build_ms,bvh_bytes,bvh_depth,width,height,depth,"
-       "rays_total,sphere_tests,frame_ms_median,frame_ms_mean,frame_ms_sd,frame_n,kernel_ms_median,"
-       "kernel_time_source,ns_per_ray,embree_ms_median,embree_ms_mean,embree_ms_sd,embree_n,embree_build_ms,"
-       "embree_ns_per_ray,speedup_vs_embree_median,speedup_vs_embree_mean,speedup_vs_embree_sd,device\n";
+  CsvTable t;
+  const ReportHeader h = report_header(rows.empty() ? std::string() : rows.front().bench.device);
   for (const auto& r : rows) {
     const BenchResult& b = r.bench;
     const double per_million = r.spheres > 0 ? r.parse_ms * 1e-3 / (double(r.spheres) * 1e-6) : 0;
-    o << r.spheres << ',' << r.json_bytes << ',' << r.parse_ms << ',' << per_million << ',' << b.bvh_build_ms << ','
-      << b.bvh_bytes << ',' << b.bvh_depth << ',' << b.width << ',' << b.height << ',' << b.depth << ','
-      << b.rays.total() << ',' << b.rays.sphere_tests << ',' << b.frame.median << ',' << b.frame.mean << ','
-      << b.frame.sd << ',' << b.frame.n << ',' << b.kernel.median << ',' << b.kernel_time_source() << ','
-      << r.ns_per_ray << ',' << b.embree.median << ',' << b.embree.mean << ',' << b.embree.sd << ',' << b.embree.n
-      << ',' << b.embree_build_ms << ',' << r.embree_ns_per_ray << ',' << b.speedup_vs_embree.median << ','
-      << b.speedup_vs_embree.mean << ',' << b.speedup_vs_embree.sd << ',' << csv_field(b.device) << '\n';
+    t.row();
+    header_csv(t, h);
+    t.set("device", b.device);
+    t.set_number("spheres", r.spheres);
+    t.set_number("json_bytes", r.json_bytes);
+    t.set_number("parse_ms", r.parse_ms);
+    t.set_number("parse_s_per_million_spheres", per_million);
+    t.set_number("bvh_build_ms", b.bvh_build_ms);
+    t.set_number("bvh_bytes", b.bvh_bytes);
+    t.set_number("bvh_depth", b.bvh_depth);
+    t.set_number("width", b.width);
+    t.set_number("height", b.height);
+    t.set_number("depth", b.depth);
+    t.set_number("rays_total", b.rays.total());
+    t.set_number("sphere_tests", b.rays.sphere_tests);
+    t.set_number("frame_ms_median", b.frame.median);
+    t.set_number("frame_ms_mean", b.frame.mean);
+    t.set_number("frame_ms_sd", b.frame.sd);
+    t.set_number("frame_n", b.frame.n);
+    t.set_number("kernel_ms_median", b.kernel.median);
+    t.set("kernel_time_source", b.kernel_time_source());
+    t.set_number("ns_per_ray", r.ns_per_ray);
+    t.set_number("embree_ms_median", b.embree.median);
+    t.set_number("embree_ms_mean", b.embree.mean);
+    t.set_number("embree_ms_sd", b.embree.sd);
+    t.set_number("embree_n", b.embree.n);
+    t.set_number("embree_build_ms", b.embree_build_ms);
+    t.set_number("embree_ns_per_ray", r.embree_ns_per_ray);
+    t.set_number("speedup_vs_embree_median", b.speedup_vs_embree.median);
+    t.set_number("speedup_vs_embree_mean", b.speedup_vs_embree.mean);
+    t.set_number("speedup_vs_embree_sd", b.speedup_vs_embree.sd);
   }
-  return o.str();
+  return t.text();
 }
 
 void print_scaling(const std::vector<ScalingRow>& rows) {

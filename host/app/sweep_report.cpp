@@ -1,38 +1,98 @@
 // sweep_report.cpp - sweep rows as a table, CSV and two plots.
 #include "app/sweep_report.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <sstream>
 
+#include "app/compare_report.hpp"
+#include "app/report_header.hpp"
 #include "cl/launch_timing.hpp"
 #include "image/plot.hpp"
 #include "util/csv.hpp"
 
 namespace clrt {
 
+namespace {
+
+// The figures of one row, by name (one list for the CSV and the JSON).
+std::vector<std::pair<std::string, nlohmann::ordered_json>> sweep_figures(const SweepRow& r) {
+  const BenchResult& b = r.bench;
+  return {{"device", r.device},
+          {"depth", r.depth},
+          {"kernel_ms_median", b.kernel.median},
+          {"kernel_ms_min", b.kernel.min},
+          {"kernel_ms_max", b.kernel.max},
+          {"kernel_ms_mean", b.kernel.mean},
+          {"kernel_ms_sd", b.kernel.sd},
+          {"kernel_n", b.kernel.n},
+          {"kernel_time_source", b.kernel_time_source()},
+          {"kernel_ms_delta", r.kernel_ms_delta},
+          {"frame_ms_median", b.frame.median},
+          {"frame_ms_mean", b.frame.mean},
+          {"frame_ms_sd", b.frame.sd},
+          {"build_warm_ms", b.build_warm.median},
+          {"upload_ms", b.upload.median},
+          {"download_ms", b.download.median},
+          {"rays_primary", b.rays.primary},
+          {"rays_shadow", b.rays.shadow},
+          {"rays_reflection", b.rays.reflection},
+          {"rays_refraction", b.rays.refraction},
+          {"rays_total", b.rays.total()},
+          {"sphere_tests", b.rays.sphere_tests},
+          {"mrays_per_s", b.mrays_per_s},
+          {"ns_per_sphere_test", b.ns_per_sphere_test},
+          {"gflops", b.gflops},
+          {"reference_ms", r.reference_ms},
+          {"speedup_vs_reference", r.speedup_vs_reference},
+          {"omp_ms_median", b.omp.median},
+          {"opencl_speedup_vs_omp", b.speedup_vs_omp.median}};
+}
+
+}  // namespace
+
 std::string sweep_csv(const std::vector<SweepRow>& rows) {
-  std::ostringstream o;
-  o << "device,depth,kernel_ms_median,kernel_ms_min,kernel_ms_max,kernel_ms_mean,kernel_ms_sd,kernel_n,"
-       "kernel_time_source,kernel_ms_delta,frame_ms_median,frame_ms_mean,frame_ms_sd,build_warm_ms,upload_ms,"
-       "download_ms,rays_primary,rays_shadow,rays_reflection,rays_refraction,rays_total,sphere_tests,mrays_per_s,"
-       "ns_per_sphere_test,gflops,reference_ms,speedup_vs_reference,omp_ms_median,opencl_speedup_vs_omp,"
-       "err_pixels_differ,err_off_by_gt1,err_max_abs_8bit,err_rmse_8bit,err_hit_flips,err_shadow_flips,"
-       "err_nan_inf,change_pixels_differ,change_rmse_8bit,change_max_abs_8bit\n";
+  CsvTable t;
+  std::map<std::string, ReportHeader> headers;  // per device: its driver
   for (const auto& r : rows) {
-    const BenchResult& b = r.bench;
-    o << csv_field(r.device) << ',' << r.depth << ',' << b.kernel.median << ',' << b.kernel.min << ',' << b.kernel.max
-      << ',' << b.kernel.mean << ',' << b.kernel.sd << ',' << b.kernel.n << ',' << b.kernel_time_source() << ','
-      << r.kernel_ms_delta << ',' << b.frame.median << ',' << b.frame.mean << ',' << b.frame.sd << ','
-      << b.build_warm.median << ',' << b.upload.median << ',' << b.download.median << ',' << b.rays.primary << ','
-      << b.rays.shadow << ',' << b.rays.reflection << ',' << b.rays.refraction << ',' << b.rays.total() << ','
-      << b.rays.sphere_tests << ',' << b.mrays_per_s << ',' << b.ns_per_sphere_test << ',' << b.gflops << ','
-      << r.reference_ms << ',' << r.speedup_vs_reference << ',' << b.omp.median << ',' << b.speedup_vs_omp.median << ','
-      << r.error.differ << ',' << r.error.off_by_gt1 << ',' << r.error.max_abs_8bit << ',' << r.error.rmse_8bit << ','
-      << r.error.hit_flips << ',' << r.error.shadow_flips << ',' << r.error.nan_inf << ',' << r.change.differ << ','
-      << r.change.rmse_8bit << ',' << r.change.max_abs_8bit << '\n';
+    if (!headers.count(r.device)) headers[r.device] = report_header(r.device);
+    t.row();
+    header_csv(t, headers[r.device]);
+    for (auto& [k, v] : sweep_figures(r)) {
+      if (v.is_string())
+        t.set(k, v.get<std::string>());
+      else if (v.is_number_float())
+        t.set_number(k, v.get<double>());
+      else
+        t.set(k, v.dump());
+    }
+    comparison_csv(t, r.error, "error_");
+    comparison_csv(t, r.change, "change_");
   }
-  return o.str();
+  return t.text();
+}
+
+nlohmann::ordered_json sweep_json(const std::vector<SweepRow>& rows, const std::string& scene) {
+  std::vector<std::string> devices;
+  for (const auto& r : rows)
+    if (std::find(devices.begin(), devices.end(), r.device) == devices.end()) devices.push_back(r.device);
+  nlohmann::ordered_json out = header_json(report_header(devices));
+  out["scene"] = scene;
+  if (!rows.empty()) {
+    const BenchResult& b = rows.front().bench;
+    out.update(nlohmann::ordered_json{{"width", b.width}, {"height", b.height}, {"spp", b.spp}, {"repeat", b.repeat}});
+  }
+  nlohmann::ordered_json arr = nlohmann::ordered_json::array();
+  for (const auto& r : rows) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    for (auto& [k, v] : sweep_figures(r)) j[k] = v;
+    j["error"] = comparison_json(r.error);
+    j["change"] = comparison_json(r.change);
+    arr.push_back(j);
+  }
+  out["rows"] = arr;
+  return out;
 }
 
 void print_sweep(const std::vector<SweepRow>& rows) {

@@ -1,6 +1,7 @@
 // sweep_report.hpp - how `clrt sweep` shows its rows: a table, CSV, and
 // plots of time and rays per depth.
 #pragma once
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -8,7 +9,14 @@
 
 namespace clrt {
 
+// CSV: the report header columns, then per row its figures (device, depth,
+// kernel_ms_median, ...) and compare's metrics of the error against the
+// reference (error_pixels_off_by_gt1, ...) and of the change from the depth
+// before (change_pixels_differ, ...).
 std::string sweep_csv(const std::vector<SweepRow>& rows);
+// JSON: the report header, scene, width, height, spp, repeat, and "rows":
+// the same figures, with "error" and "change" as compare's metric objects.
+nlohmann::ordered_json sweep_json(const std::vector<SweepRow>& rows, const std::string& scene);
 void print_sweep(const std::vector<SweepRow>& rows);
 // Time per depth to `path`; rays per depth to the same name with "-rays"
 // before the extension. Returns the second path.

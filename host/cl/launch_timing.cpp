@@ -31,12 +31,22 @@ TimedLaunch start_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel,
   return launch;
 }
 
+TimedLaunch start_timed_after(const TimedLaunch& earlier, const cl::CommandQueue& queue, const cl::Kernel& kernel,
+                              const cl::NDRange& global, const cl::NDRange& local) {
+  TimedLaunch launch;
+  launch.launched = earlier.launched;
+  launch.first = earlier.first() ? earlier.first : earlier.event;
+  queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &launch.event);
+  return launch;
+}
+
 LaunchTime finish_timed(const TimedLaunch& launch) {
   launch.event.wait();
   const double wall_ms = ms_since(launch.launched);
   // As doubles: a driver that reports END before START gives a negative
   // (implausible) time instead of a wrapped-around huge one.
-  const double start = double(launch.event.getProfilingInfo<CL_PROFILING_COMMAND_START>());
+  const cl::Event& first = launch.first() ? launch.first : launch.event;
+  const double start = double(first.getProfilingInfo<CL_PROFILING_COMMAND_START>());
   const double end = double(launch.event.getProfilingInfo<CL_PROFILING_COMMAND_END>());
   return launch_time((end - start) * 1e-6, wall_ms);
 }

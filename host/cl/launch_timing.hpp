@@ -47,10 +47,18 @@ LaunchTime run_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, co
 struct TimedLaunch {
   cl::Event event;
   Clock::time_point launched;
+  // A sequence of launches (start_timed_after()): the first one's event,
+  // whose start is the sequence's; null for a single launch.
+  cl::Event first;
 };
 TimedLaunch start_timed(const cl::CommandQueue& queue, const cl::Kernel& kernel, const cl::NDRange& global,
                         const cl::NDRange& local);
 LaunchTime finish_timed(const TimedLaunch& launch);
+// Enqueues `kernel` after `earlier` on the same in-order queue and returns
+// the two as one timed launch: from earlier's enqueue (host) and start
+// (events) to this one's end.
+TimedLaunch start_timed_after(const TimedLaunch& earlier, const cl::CommandQueue& queue, const cl::Kernel& kernel,
+                              const cl::NDRange& global, const cl::NDRange& local);
 
 // Where a total over `launches` launches came from, `host_timed` of which
 // used the host clock: "events", "host" or "mixed" (JSON/CSV value).

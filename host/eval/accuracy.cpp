@@ -8,9 +8,39 @@
 #include "reference/reference.hpp"
 #include "render/precision_support.hpp"
 #include "render/renderer.hpp"
+#include "util/error.hpp"
 #include "util/stats.hpp"
 
 namespace clrt {
+
+namespace {
+constexpr const char* kSubsampleInfix = "+subsample-";
+}
+
+std::string AccuracyVariant::name() const {
+  return precision_name(precision) + (subsample != Subsample::Off ? kSubsampleInfix + subsample_name(subsample) : "");
+}
+
+AccuracyVariant parse_accuracy_variant(const std::string& name) {
+  const size_t at = name.find(kSubsampleInfix);
+  AccuracyVariant v;
+  v.precision = parse_precision(name.substr(0, at));
+  if (at == std::string::npos) return v;
+  const std::string mode = name.substr(at + std::string(kSubsampleInfix).size());
+  for (Subsample m : {Subsample::Shade, Subsample::Interpolate})
+    if (mode == subsample_name(m)) v.subsample = m;
+  if (v.subsample == Subsample::Off)
+    throw UserError("unknown variant '" + name + "' (subsampling modes: shade, interpolate)");
+  return v;
+}
+
+std::vector<AccuracyVariant> default_accuracy_variants() {
+  std::vector<AccuracyVariant> variants;
+  for (Precision p : all_precisions()) variants.push_back({p, Subsample::Off});
+  variants.push_back({Precision::Robust, Subsample::Shade});
+  variants.push_back({Precision::Robust, Subsample::Interpolate});
+  return variants;
+}
 
 std::string AccuracyRow::time_source() const {
   return clrt::time_source(host_timed_launches, launches);
@@ -24,19 +54,23 @@ std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes,
     const Image ref = render_reference(ns.scene, s.width, s.height, depth, Sampling(s.spp, s.adaptive));
     const size_t first = rows.size();
     std::vector<std::unique_ptr<Renderer>> cls;  // per row; null = unsupported
-    for (Precision p : s.variants) {
+    for (const AccuracyVariant& v : s.variants) {
       AccuracyRow row;
       row.scene = ns.name;
-      row.variant = precision_name(p);
+      row.variant = v.name();
       row.depth = depth;
-      row.note = unsupported_reason(p, dev);
+      row.note = unsupported_reason(v.precision, dev);
+      if (row.note.empty() && v.subsample != Subsample::Off && s.spp != 1)
+        row.note = "subsampling needs one sample per pixel (--spp 1)";
       row.supported = row.note.empty();
       if (row.supported) {
         RenderSettings settings;
         settings.kernel = s.base;
-        settings.kernel.precision = p;
+        settings.kernel.precision = v.precision;
         cls.push_back(std::make_unique<Renderer>(std::vector<DeviceInfo>{dev}, settings));
-        cls.back()->prepare(ns.scene, s.width, s.height, depth, Sampling(s.spp, s.adaptive));
+        // (the error of a subsampled variant is against the exact reference:
+        // what the speed-up costs)
+        cls.back()->prepare(ns.scene, s.width, s.height, depth, Sampling(s.spp, s.adaptive, v.subsample));
         row.error = compare_images(cls.back()->render(), ref);  // also the warm-up
       } else {
         cls.push_back(nullptr);

@@ -1,6 +1,8 @@
 // accuracy.hpp - error against run time: every precision variant on every
 // scene, kernel time (median of N launches after a warm-up) and the error of
-// the image against the double reference (`clrt accuracy`).
+// the image against the double reference (`clrt accuracy`). The book's
+// subsampling is a variant too ("robust+subsample"): a speed-up bought with
+// error, measured against the same exact reference.
 #pragma once
 #include <string>
 #include <vector>
@@ -9,9 +11,22 @@
 #include "eval/compare.hpp"
 #include "render/build_options.hpp"
 #include "render/precision.hpp"
+#include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
+
+// A precision, alone or with subsampling (scene/sampling.hpp).
+struct AccuracyVariant {
+  Precision precision = Precision::Robust;
+  Subsample subsample = Subsample::Off;
+  std::string name() const;  // "robust", "robust+subsample-shade", "robust+subsample-interpolate"
+  bool operator==(const AccuracyVariant& o) const { return precision == o.precision && subsample == o.subsample; }
+};
+// A name as name() gives it (UserError for others).
+AccuracyVariant parse_accuracy_variant(const std::string& name);
+// Every precision, then robust with each subsampling mode.
+std::vector<AccuracyVariant> default_accuracy_variants();
 
 struct AccuracySettings {
   int width = 600, height = 600;
@@ -20,7 +35,7 @@ struct AccuracySettings {
   double adaptive = -1;  // adaptive supersampling's threshold (scene/sampling.hpp); negative: off
   int repeat = 7;        // timed launches per variant (after one warm-up launch)
   KernelConfig base;     // precision is overwritten per variant
-  std::vector<Precision> variants = all_precisions();
+  std::vector<AccuracyVariant> variants = default_accuracy_variants();
 };
 
 struct AccuracyRow {

@@ -62,6 +62,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   r.height = s.height;
   r.depth = s.depth;
   r.spp = s.spp;
+  r.subsample = s.subsample;
   r.repeat = s.repeat;
   // The OpenMP and Embree tracers trace one ray per pixel and implement
   // chapters 2-4 only: at spp > 1, with transparent spheres or with planes
@@ -70,7 +71,9 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   // says why).
   const bool transparent = std::any_of(scene.spheres.begin(), scene.spheres.end(),
                                        [](const Sphere& sphere) { return sphere.transparency > 0; });
-  if (s.spp > 1)
+  if (s.subsample != Subsample::Off)
+    r.tracers_not_run = "they do not subsample (--subsample)";
+  else if (s.spp > 1)
     r.tracers_not_run = "they trace one ray per pixel (--spp " + std::to_string(s.spp) + " traces " +
                         std::to_string(s.spp * s.spp) + ")";
   else if (transparent)
@@ -88,7 +91,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
     no_cache.kernel.use_cache = false;
     for (int i = 0; i < build_repeat; ++i) {
       Renderer c(devs, no_cache);
-      c.prepare(scene, s.width, s.height, s.depth, Sampling(s.spp, s.adaptive));
+      c.prepare(scene, s.width, s.height, s.depth, s.sampling());
       cold.push_back(c.stats().build_ms);
     }
     // Make sure the entry exists, then time loads from the cache.
@@ -96,7 +99,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
       r.build_warm_cached = true;
       for (int i = 0; i <= build_repeat; ++i) {
         Renderer c(devs, settings);
-        c.prepare(scene, s.width, s.height, s.depth, Sampling(s.spp, s.adaptive));
+        c.prepare(scene, s.width, s.height, s.depth, s.sampling());
         if (i == 0) continue;  // the one that stores the entry
         warm.push_back(c.stats().build_ms);
         uploads.push_back(c.stats().upload_ms);
@@ -108,7 +111,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   // End to end on a fresh renderer: (warm) build + upload + first frame.
   const auto t0 = Clock::now();
   Renderer cl(devs, settings);
-  cl.prepare(scene, s.width, s.height, s.depth, Sampling(s.spp, s.adaptive));
+  cl.prepare(scene, s.width, s.height, s.depth, s.sampling());
   r.options = cl.options();
   if (warm.empty()) {
     warm.push_back(cl.stats().build_ms);
@@ -191,7 +194,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   RenderSettings counting = settings;
   counting.kernel.count_rays = true;
   Renderer rc(devs, counting);
-  rc.prepare(scene, s.width, s.height, s.depth, Sampling(s.spp, s.adaptive));
+  rc.prepare(scene, s.width, s.height, s.depth, s.sampling());
   (void)rc.render();
   r.rays = rc.stats().rays;
   if (r.kernel.median > 0) {
@@ -212,7 +215,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
 
   if (s.reference) {
     const auto t2 = Clock::now();
-    r.reference_image = render_reference(scene, s.width, s.height, s.depth, Sampling(s.spp, s.adaptive));
+    r.reference_image = render_reference(scene, s.width, s.height, s.depth, s.sampling());
     r.reference = summarize({ms_since(t2)});
     if (r.frame.median > 0) r.speedup_vs_reference = r.reference.median / r.frame.median;
   }

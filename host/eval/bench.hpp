@@ -21,6 +21,7 @@
 #include "eval/peak_flops.hpp"
 #include "image/image.hpp"
 #include "render/renderer.hpp"
+#include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 #include "util/stats.hpp"
 
@@ -28,14 +29,17 @@ namespace clrt {
 
 struct BenchSettings {
   int width = 600, height = 600, depth = 3;
-  int spp = 1;            // N x N samples per pixel (clrt and the reference; the tracers trace one, see omp/embree)
-  double adaptive = -1;   // adaptive supersampling's threshold (scene/sampling.hpp); negative: off
+  int spp = 1;           // N x N samples per pixel (clrt and the reference; the tracers trace one, see omp/embree)
+  double adaptive = -1;  // adaptive supersampling's threshold (scene/sampling.hpp); negative: off
+  Subsample subsample = Subsample::Off;  // the book's subsampling (scene/sampling.hpp), clrt and the reference
   int repeat = 5;         // >= 1 (--repeat checks it): timed rounds (clrt, OpenMP, Embree frame) after one warm-up each
   bool reference = true;  // time the scalar double reference (and keep its image)
   bool omp = true;        // time the OpenMP float tracer (one ray per pixel: not run when spp > 1)
   bool embree = true;     // time the Embree tracer (and check its image against the OpenMP tracer's; not when spp > 1)
   bool builds = true;     // measure cold (no cache) and warm (cache hit) builds
   bool peak = true;       // measure the device's multiply-add peak
+
+  Sampling sampling() const { return Sampling(spp, adaptive, subsample); }
 };
 
 // Builds timed per kind: at most this many (a cold build costs up to seconds).
@@ -50,6 +54,7 @@ constexpr double kFlopPerSphereTest = 25;
 struct BenchResult {
   std::string device, options;
   int width = 0, height = 0, depth = 0, spp = 1, repeat = 0;
+  Subsample subsample = Subsample::Off;
   bool rgba8 = false;            // frames (clrt's and the tracers') held as 8-bit RGBA, else float RGB
   std::string tracers_not_run;   // why the OpenMP/Embree tracers were not run ("" when they were)
   Stats build_cold, build_warm;  // ms per build of every device (the longest, they run in parallel)

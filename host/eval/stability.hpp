@@ -11,6 +11,7 @@
 #include "eval/compare.hpp"
 #include "render/build_options.hpp"
 #include "render/precision.hpp"
+#include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
@@ -22,6 +23,13 @@ struct StabilityCase {
   std::string param;   // e.g. "5e5"
   Scene scene;
   int depth = 3;
+  // Samples per pixel (N x N, --spp N): both engines render the case with
+  // it, so the verdict compares like with like.
+  Sampling sampling;
+  // For a case rendered with N > 1: the name of its twin at 1 sample per
+  // pixel (the same scene and depth). The report measures how far
+  // supersampling moves the reference image from the twin's ("" = none).
+  std::string baseline;
   // Part of the stable suite: the default (robust) variant must pass it.
   bool stable = true;
   std::map<Precision, Expect> expect;  // missing = Any
@@ -47,11 +55,37 @@ struct StabilityResult {
   Expect expected = Expect::Any;
 };
 
+// How far supersampling moves the reference: a case's reference image at
+// N x N samples per pixel against its baseline twin's at 1 sample.
+// Averaging samples changes a pixel only where the colour varies within it:
+// silhouettes, shadow and reflection borders, highlights.
+struct SamplingConvergence {
+  size_t case_index = 0;     // the N x N case
+  std::string baseline;      // the 1-sample case it is measured against
+  Comparison change;         // reference(N x N) against reference(1): pixels changed, max, RMSE
+  double mean_abs_8bit = 0;  // mean |8-bit difference| over every channel of every pixel
+  // Pixels changed by more than one level although the 1-sample image is
+  // flat around them: every pixel of their 3 x 3 neighbourhood shows the
+  // same primitive and shadow mask, within one level of the pixel's colour.
+  // The claim "supersampling changes only edge pixels" counts these.
+  size_t changed_off_edges = 0;
+  double percent_changed() const { return change.pixels ? 100.0 * change.differ / change.pixels : 0.0; }
+};
+
+struct StabilityRun {
+  std::vector<StabilityResult> results;          // variant by variant, each over every case
+  std::vector<SamplingConvergence> convergence;  // one per case with a baseline, in the suite's order
+};
+
 // Runs each case on each variant (generic, unspecialized kernels: one build
-// per variant for the whole suite) at width x height on one device.
-std::vector<StabilityResult> run_stability(const std::vector<StabilityCase>& cases,
-                                           const std::vector<Precision>& variants, int width, int height,
-                                           const DeviceInfo& device, const KernelConfig& base);
+// per variant for the whole suite) at width x height on one device, and
+// measures each supersampled case's reference against its baseline's.
+StabilityRun run_stability(const std::vector<StabilityCase>& cases, const std::vector<Precision>& variants, int width,
+                           int height, const DeviceInfo& device, const KernelConfig& base);
+
+// Reference(N x N) against reference(1) for one supersampled case (exposed
+// for the tests: the measure behind SamplingConvergence).
+SamplingConvergence sampling_change(const Image& supersampled, const Image& single);
 
 // Results whose verdict differs from the case's expectation.
 size_t count_unmet(const std::vector<StabilityResult>& results);

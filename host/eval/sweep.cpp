@@ -20,7 +20,7 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<DeviceInfo
   for (int d = s.depth_from; d <= s.depth_to; ++d) {
     // The reference once per depth, shared by the devices.
     const auto t0 = Clock::now();
-    Image ref = render_reference(scene, s.bench.width, s.bench.height, d, Sampling(s.bench.spp, s.bench.adaptive));
+    Image ref = render_reference(scene, s.bench.width, s.bench.height, d, s.bench.sampling());
     double ref_ms = ms_since(t0);
     for (size_t k = 0; k < devices.size(); ++k) {
       if (s.progress) s.progress(done, total, "depth " + std::to_string(d) + " on " + devices[k].name);

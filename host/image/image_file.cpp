@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "image/image_io.hpp"
@@ -17,43 +20,63 @@ namespace clrt {
 
 namespace {
 
+std::string lower(std::string s) {
+  for (auto& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+// --format's value: "exr", "EXR" and ".exr" name the same format.
+std::string format_arg(const std::string& format) {
+  return lower(!format.empty() && format[0] == '.' ? format.substr(1) : format);
+}
+
 std::string extension_of(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   return ext.empty() ? ext : ext.substr(1);
 }
 
-bool is_float_format(const std::string& path) {
-  std::string ext = extension_of(path);
-  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-  return ext == "exr" || ext == "hdr" || ext == "pfm";
-}
-
-// The name whose extension picks the encoder: OUT itself, or "out.png" for
-// standard output and devices named without an extension (/dev/stdout).
-std::string format_name(const std::string& path, OutputKind kind) {
+// The name whose extension picks the encoder: "out.FORMAT" for --format,
+// OUT itself, or "out.png" for standard output and devices named without an
+// extension (/dev/stdout).
+std::string format_name(const std::string& path, OutputKind kind, const std::string& format) {
+  if (!format.empty()) return "out." + format;
   return extension_of(path).empty() && kind != OutputKind::File ? std::string("out.png") : path;
 }
 
-[[noreturn]] void unknown_format(const std::string& path) {
-  throw UserError(path + ": unknown image format \"." + extension_of(path) + "\" (use .png, .ppm, .exr, ...)");
+std::string format_ext(const std::string& path, OutputKind kind, const std::string& format) {
+  return lower(extension_of(format_name(path, kind, format)));
+}
+
+bool is_float_ext(const std::string& ext) {
+  return ext == "exr" || ext == "hdr" || ext == "pfm";
+}
+
+// Formats whose header clrt writes its metadata into as comment lines
+// ("# key=value" after the first line): OpenImageIO's writers keep none.
+bool comment_header_ext(const std::string& ext) {
+  return ext == "ppm" || ext == "pnm" || ext == "hdr";
+}
+
+[[noreturn]] void unknown_format(const std::string& path, const std::string& ext) {
+  throw UserError(path + ": unknown image format \"." + ext + "\" (use .png, .ppm, .exr, .pfm, ...)");
 }
 
 // UserError unless there is an encoder for OUT (of this kind). The formats
 // of written_without_asking() are known without loading the imaging module
-// (only its file must be there); any other extension is asked of
-// OpenImageIO, which loads it.
-void check_image_format(const std::string& path, OutputKind kind) {
-  if (extension_of(path).empty() && kind == OutputKind::File)
-    throw UserError(path + ": output has no file extension (use .png, .ppm, .exr, ...)");
-  const std::string name = format_name(path, kind);
-  std::string ext = extension_of(name);
-  for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+// (only its file must be there), PFM is clrt's own; any other extension is
+// asked of OpenImageIO, which loads it.
+void check_image_format(const std::string& path, OutputKind kind, const std::string& format) {
+  if (format.empty() && extension_of(path).empty() && kind == OutputKind::File)
+    throw UserError(path + ": output has no file extension (use .png, .ppm, .exr, .pfm, ... or --format)");
+  const std::string name = format_name(path, kind, format);
+  const std::string ext = lower(extension_of(name));
+  if (ext == "pfm") return;
   const auto& known = written_without_asking();
   if (std::find(known.begin(), known.end(), ext) != known.end()) {
     imageio::check_module_present();
     return;
   }
-  if (!imageio::module().can_write(name)) unknown_format(path);
+  if (!imageio::module().can_write(name)) unknown_format(path, format.empty() ? extension_of(path) : format);
 }
 
 [[noreturn]] void encode_failed(const std::string& path, std::string err) {
@@ -62,30 +85,97 @@ void check_image_format(const std::string& path, OutputKind kind) {
   throw UserError(path + ": cannot write output: " + (err.empty() ? std::string("unknown error") : err));
 }
 
+// One line, whatever the value held (a scene path may hold a newline).
+std::string one_line(std::string s) {
+  for (auto& c : s)
+    if (c == '\n' || c == '\r' || c == '\0') c = ' ';
+  return s;
+}
+
+// `metadata` as "# key=value" lines inserted after the header's first line
+// (PPM: "P6", HDR: "#?RADIANCE"), where both formats allow comments.
+std::string with_header_comments(std::string bytes, const ImageMetadata& metadata) {
+  const size_t eol = bytes.find('\n');
+  if (eol == std::string::npos || metadata.empty()) return bytes;
+  std::string lines;
+  for (const auto& [key, value] : metadata) lines += "# " + one_line(key) + "=" + one_line(value) + "\n";
+  return bytes.insert(eol + 1, lines);
+}
+
+// PFM (OpenImageIO 2.4 reads it but cannot write it): "PF", width height,
+// -1 (little-endian floats), then rows bottom to top, RGB float32.
+std::string encode_pfm(int w, int h, const std::vector<float>& rgb) {
+  static_assert(sizeof(float) == 4, "PFM holds IEEE float32");
+  std::string bytes = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1.0\n";
+  const size_t row = size_t(w) * 3 * sizeof(float), header = bytes.size();
+  bytes.resize(header + row * size_t(h));
+  for (int y = 0; y < h; ++y)  // (this host is little-endian: x86-64, aarch64)
+    std::memcpy(&bytes[header + row * size_t(h - 1 - y)], rgb.data() + size_t(y) * w * 3, row);
+  return bytes;
+}
+
 // Encodes `pixels` (float or uint8 RGB) in memory - or, for the few encoders
 // that can only write to a path, in a private scratch file - and returns the
 // file's bytes. Nothing is written to OUT here: write_output() does that.
-std::string encode(const std::string& path, OutputKind kind, int w, int h, imageio::PixelType type, const void* data) {
+std::string encode(const std::string& path, const std::string& name, int w, int h, imageio::PixelType type,
+                   const void* data, const ImageMetadata& metadata) {
   imageio::Module& io = imageio::module();
-  const std::string name = format_name(path, kind);
   std::string bytes;
   if (io.in_memory(name)) {
-    const std::string err = io.encode(name, "", w, h, type, data, &bytes);
+    const std::string err = io.encode(name, "", w, h, type, data, metadata, &bytes);
     if (!err.empty()) encode_failed(path, err);
     return bytes;
   }
   ScratchFile scratch("out" + std::filesystem::path(name).extension().string());
-  const std::string err = io.encode(name, scratch.path(), w, h, type, data, nullptr);
+  const std::string err = io.encode(name, scratch.path(), w, h, type, data, metadata, nullptr);
   if (!err.empty()) encode_failed(path, err);
   return scratch.read();
 }
 
 // (Callers checked OUT before the work with check_output_format();
 // write_output() meets any change since.)
-void write_pixels(const std::string& path, int w, int h, imageio::PixelType type, const void* data) {
+void write_pixels(const std::string& path, const std::string& format, int w, int h, imageio::PixelType type,
+                  const void* data, const ImageMetadata& metadata) {
   const OutputKind kind = resolve_output(path).kind;
-  check_image_format(path, kind);
-  write_output(path, encode(path, kind, w, h, type, data));
+  check_image_format(path, kind, format);
+  const std::string name = format_name(path, kind, format);
+  const std::string ext = lower(extension_of(name));
+  std::string bytes;
+  if (ext == "pfm") {
+    const size_t n = size_t(w) * h * 3;
+    std::vector<float> f(n);
+    for (size_t i = 0; i < n; ++i)  // (8-bit data, a --diff image: 255 = 1.0)
+      f[i] = type == imageio::PixelType::Float ? static_cast<const float*>(data)[i]
+                                               : float(static_cast<const uint8_t*>(data)[i] / 255.0);
+    bytes = encode_pfm(w, h, f);
+  } else {
+    bytes = encode(path, name, w, h, type, data, metadata);
+    if (comment_header_ext(ext)) bytes = with_header_comments(std::move(bytes), metadata);
+  }
+  write_output(path, bytes);
+}
+
+// The "# key=value" comment lines of a PPM or HDR header (read_metadata).
+ImageMetadata header_comments(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(65536, '\0');
+  in.read(&head[0], std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  ImageMetadata out;
+  size_t pos = head.find('\n');  // after the magic line
+  while (pos != std::string::npos && pos + 1 < head.size()) {
+    const size_t eol = head.find('\n', pos + 1);
+    if (eol == std::string::npos) break;
+    const std::string line = head.substr(pos + 1, eol - pos - 1);
+    pos = eol;
+    if (line.rfind("# ", 0) != 0) {
+      if (line.empty() || std::isdigit(static_cast<unsigned char>(line[0]))) break;  // end of the header
+      continue;                                                                      // HDR's FORMAT=..., EXPOSURE=...
+    }
+    const size_t eq = line.find('=');
+    if (eq != std::string::npos) out.emplace_back(line.substr(2, eq - 2), line.substr(eq + 1));
+  }
+  return out;
 }
 
 }  // namespace
@@ -96,26 +186,58 @@ const std::vector<std::string>& written_without_asking() {
   return known;
 }
 
-OutputTarget check_output_format(const std::string& path) {
+OutputTarget check_output_format(const std::string& path, const std::string& format) {
   const OutputTarget target = check_output(path);
-  check_image_format(path, target.kind);
+  check_image_format(path, target.kind, format_arg(format));
   return target;
 }
 
-PixelFormat output_pixel_format(const std::string& path) {
-  return is_float_format(path) ? PixelFormat::Float : PixelFormat::Rgba8;
+PixelFormat output_pixel_format(const std::string& path, const std::string& format) {
+  const OutputKind kind = path == "-" ? OutputKind::Stdout : OutputKind::File;
+  return is_float_ext(format_ext(path, kind, format_arg(format))) ? PixelFormat::Float : PixelFormat::Rgba8;
 }
 
-void write_image(const Image& img, const std::string& path) {
-  if (is_float_format(path)) {
+void write_image(const Image& img, const std::string& path, const ImageMetadata& metadata,
+                 const std::string& format_in) {
+  const std::string format = format_arg(format_in);
+  const bool floating = output_pixel_format(path, format) == PixelFormat::Float;
+  // The colour tags come first; the caller's metadata cannot replace them.
+  ImageMetadata meta{{"oiio:ColorSpace", "sRGB"}, {kWhiteKey, floating ? "1" : "255"}};
+  for (const auto& kv : metadata)
+    if (kv.first != "oiio:ColorSpace" && kv.first != kWhiteKey) meta.push_back({kv.first, one_line(kv.second)});
+  if (floating) {
     if (img.contents.pixels != PixelFormat::Float)
       throw std::logic_error("write_image: " + path + " needs float colour, the frame holds 8-bit");
-    std::vector<float> f(img.rgb.begin(), img.rgb.end());
-    write_pixels(path, img.width, img.height, imageio::PixelType::Float, f.data());
+    std::vector<float> f(img.rgb.size());
+    for (size_t i = 0; i < f.size(); ++i) f[i] = float(img.rgb[i] * (kFloatWhite / 255.0));
+    write_pixels(path, format, img.width, img.height, imageio::PixelType::Float, f.data(), meta);
   } else {
     auto u8 = to_u8(img);
-    write_pixels(path, img.width, img.height, imageio::PixelType::UInt8, u8.data());
+    write_pixels(path, format, img.width, img.height, imageio::PixelType::UInt8, u8.data(), meta);
   }
+}
+
+ImageMetadata read_metadata(const std::string& path, const std::vector<std::string>& keys) {
+  ImageMetadata out;
+  const std::string ext = lower(extension_of(path));
+  if (comment_header_ext(ext)) {
+    const ImageMetadata all = header_comments(path);
+    for (const auto& k : keys)
+      for (const auto& kv : all)
+        if (kv.first == k) {
+          out.push_back(kv);
+          break;
+        }
+    return out;
+  }
+  std::string err;
+  auto in = imageio::module().open(path, &err);
+  if (!in) throw UserError(path + ": cannot read image: " + err);
+  for (const auto& k : keys) {
+    std::string v = in->attribute(k);
+    if (!v.empty()) out.emplace_back(k, std::move(v));
+  }
+  return out;
 }
 
 Image read_image(const std::string& path, int max_edge, long long max_pixels) {
@@ -127,6 +249,25 @@ Image read_image(const std::string& path, int max_edge, long long max_pixels) {
   if (w <= 0 || h <= 0 || w > max_edge || h > max_edge || (long long)w * h > max_pixels)
     throw UserError(path + ": image " + std::to_string(w) + "x" + std::to_string(h) + " is too large or empty");
   const bool floating = in->floating();
+  // Float files: how much 255 (white) is stored as. The file says so (EXR's
+  // clrt:white, clrt's HDR comment); every PFM is clrt's 1.0 = white (no
+  // older clrt wrote one); other float files are as stored (older clrt
+  // EXR/HDR files hold the 0..255 scale).
+  double scale = 1;
+  if (floating) {
+    const std::string ext = lower(extension_of(path));
+    std::string white = in->attribute(kWhiteKey);
+    if (white.empty() && comment_header_ext(ext)) {
+      const ImageMetadata m = read_metadata(path, {kWhiteKey});
+      if (!m.empty()) white = m.front().second;
+    }
+    char* end = nullptr;
+    const double white_value = white.empty() ? 0 : std::strtod(white.c_str(), &end);
+    if (!white.empty() && end && *end == '\0' && std::isfinite(white_value) && white_value > 0)
+      scale = 255.0 / white_value;
+    else if (ext == "pfm")
+      scale = 255.0 / kFloatWhite;
+  }
   Image img(w, h);
   std::vector<float> f;
   std::vector<uint8_t> u8;
@@ -138,12 +279,15 @@ Image read_image(const std::string& path, int max_edge, long long max_pixels) {
     err = in->read_rgb(imageio::PixelType::UInt8, u8.data());
   }
   if (!err.empty()) throw UserError(path + ": cannot read image: " + err);
-  for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = floating ? double(f[i]) : double(u8[i]);
+  for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = floating ? double(f[i]) * scale : double(u8[i]);
   return img;
 }
 
-void write_rgb8(const std::vector<uint8_t>& rgb, int width, int height, const std::string& path) {
-  write_pixels(path, width, height, imageio::PixelType::UInt8, rgb.data());
+void write_rgb8(const std::vector<uint8_t>& rgb, int width, int height, const std::string& path,
+                const ImageMetadata& metadata) {
+  ImageMetadata meta{{"oiio:ColorSpace", "sRGB"}};
+  for (const auto& kv : metadata) meta.push_back({kv.first, one_line(kv.second)});
+  write_pixels(path, "", width, height, imageio::PixelType::UInt8, rgb.data(), meta);
 }
 
 }  // namespace clrt

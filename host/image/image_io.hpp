@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace clrt {
@@ -22,7 +23,7 @@ namespace imageio {
 // Bump on every change to the classes below: a module of another version
 // then refuses to load ("not a clrt imaging module of this build") instead
 // of crashing.
-constexpr int kImageIoAbi = 1;
+constexpr int kImageIoAbi = 2;
 // The module's one exported function, `extern "C" Module* clrt_imageio(int
 // abi)`: its module, or null when `abi` is not the module's kImageIoAbi.
 constexpr const char* kImageIoEntry = "clrt_imageio";
@@ -31,6 +32,10 @@ enum class PixelType { UInt8, Float };
 enum class AlignX { Left, Right, Center };
 enum class AlignY { Baseline, Top, Bottom, Center };
 using Rgb = std::array<float, 3>;
+// String attributes written into a file (OpenImageIO ImageSpec attributes:
+// PNG text chunks, EXR header attributes, TIFF/JPEG tags where the format
+// has them; a format without a place for one drops it).
+using Attributes = std::vector<std::pair<std::string, std::string>>;
 
 // The box a text would cover, relative to its origin; defined=false when
 // the font cannot render it.
@@ -47,6 +52,8 @@ class Reader {
   virtual int height() const = 0;
   virtual int channels() const = 0;
   virtual bool floating() const = 0;  // stored as floating point
+  // The string attribute `name` of the file ("" when it has none).
+  virtual std::string attribute(const std::string& name) const = 0;
   // Reads the first three channels, width*height*3 values of `type`, into
   // `data`. Returns "" or the error.
   virtual std::string read_rgb(PixelType type, void* data) = 0;
@@ -70,12 +77,13 @@ class Module {
  public:
   // Whether there is an encoder for a file named `name` (by its extension).
   virtual bool can_write(const std::string& name) = 0;
-  // Encodes width x height RGB `data` of `type` as the format of `name`: into
-  // *bytes when `file` is empty, else into `file` (for the encoders that can
-  // only write to a path: in_memory() is false). Returns "" or the error.
+  // Encodes width x height RGB `data` of `type` as the format of `name`,
+  // with `attributes`: into *bytes when `file` is empty, else into `file`
+  // (for the encoders that can only write to a path: in_memory() is false).
+  // Returns "" or the error.
   virtual bool in_memory(const std::string& name) = 0;
   virtual std::string encode(const std::string& name, const std::string& file, int width, int height, PixelType type,
-                             const void* data, std::string* bytes) = 0;
+                             const void* data, const Attributes& attributes, std::string* bytes) = 0;
   // Opens an image file; null with *error set when it cannot be read.
   virtual std::unique_ptr<Reader> open(const std::string& path, std::string* error) = 0;
   virtual TextBox text_size(const std::string& s, int size, const std::string& font) = 0;

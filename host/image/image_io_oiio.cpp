@@ -48,6 +48,10 @@ class OiioReader final : public Reader {
   int height() const override { return in_->spec().height; }
   int channels() const override { return in_->spec().nchannels; }
   bool floating() const override { return in_->spec().format.is_floating_point(); }
+  std::string attribute(const std::string& name) const override {
+    const OIIO::ParamValue* p = in_->spec().find_attribute(name, OIIO::TypeDesc::STRING);
+    return p ? std::string(p->get_string()) : std::string();
+  }
   std::string read_rgb(PixelType type, void* data) override {
     if (in_->read_image(0, 0, 0, 3, oiio_type(type), data)) return "";
     return or_unknown(in_->geterror());
@@ -106,8 +110,9 @@ class OiioModule final : public Module {
   }
 
   std::string encode(const std::string& name, const std::string& file, int w, int h, PixelType type, const void* data,
-                     std::string* bytes) override {
-    const OIIO::ImageSpec spec(w, h, 3, oiio_type(type));
+                     const Attributes& attributes, std::string* bytes) override {
+    OIIO::ImageSpec spec(w, h, 3, oiio_type(type));
+    for (const auto& [key, value] : attributes) spec.attribute(key, value);
     std::vector<unsigned char> buf;
     OIIO::Filesystem::IOVecOutput memory(buf);
     auto out = file.empty() ? OIIO::ImageOutput::create(name, &memory) : OIIO::ImageOutput::create(name);

@@ -96,6 +96,30 @@ class Tracer {
     return h;
   }
 
+  // The closest hit in (t_min, t_max) on the primitive with id `id` alone
+  // (ids as HitId's); none when the ray misses it.
+  Hit IntersectOnly(int32_t id, Vec3 O, Vec3 D, double t_min, double t_max) const {
+    Hit h;
+    const size_t n_spheres = s_.spheres.size(), n_planes = s_.planes.size();
+    if (id < 0) return h;
+    if (size_t(id) < n_spheres) {
+      const Sphere& sphere = s_.spheres[size_t(id)];
+      double t1, t2;
+      IntersectRaySphere(O, D, sphere, t1, t2);
+      if (t1 < h.t && t_min < t1 && t1 < t_max) h = {&sphere, nullptr, nullptr, t1};
+      if (t2 < h.t && t_min < t2 && t2 < t_max) h = {&sphere, nullptr, nullptr, t2};
+    } else if (size_t(id) < n_spheres + n_planes) {
+      const Plane& plane = s_.planes[size_t(id) - n_spheres];
+      double t = IntersectRayPlane(O, D, plane);
+      if (t_min < t && t < t_max) h = {nullptr, &plane, nullptr, t};
+    } else if (size_t(id) < n_spheres + n_planes + s_.triangles.size()) {
+      const Triangle& tri = s_.triangles[size_t(id) - n_spheres - n_planes];
+      double t = IntersectRayTriangle(O, D, tri);
+      if (t_min < t && t < t_max) h = {nullptr, nullptr, &tri, t};
+    }
+    return h;
+  }
+
   // The hit's id over all primitives: spheres, then planes, then triangles
   // (the kernel numbers them the same way; compare's hit classes).
   int32_t HitId(const Hit& h) const {
@@ -205,7 +229,12 @@ class Tracer {
   // light like any other. With t = 0 this is the book's line, exactly.
   Vec3 TraceRay(Vec3 O, Vec3 D, double t_min, double t_max, int depth, double medium, int32_t* hit,
                 int32_t* shadowed) const {
-    Hit h = ClosestIntersection(O, D, t_min, t_max);
+    return ShadeHit(ClosestIntersection(O, D, t_min, t_max), O, D, depth, medium, hit, shadowed);
+  }
+
+  // TraceRay after its ClosestIntersection: the colour of the hit h of the
+  // ray O + tD (the background where there is none).
+  Vec3 ShadeHit(const Hit& h, Vec3 O, Vec3 D, int depth, double medium, int32_t* hit, int32_t* shadowed) const {
     if (!h.found()) return s_.background;
     if (hit) *hit = HitId(h);
     Vec3 P = O + h.t * D;
@@ -259,65 +288,104 @@ class Tracer {
 Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling) {
   const int n = sampling.spp;
   if (n < 1) throw std::invalid_argument("render_reference: spp must be >= 1");
+  if (sampling.subsample != Subsample::Off && n != 1)
+    throw std::invalid_argument("render_reference: subsampling needs spp 1");
   Image img(width, height);
   Tracer tracer(scene);
   const Camera& cam = scene.camera;
   const double camera_medium = tracer.CameraMedium();
   const auto& m = cam.rotation;
-  for (int x = -width / 2; x < width - width / 2; ++x) {
-    for (int y = height / 2 - height; y < height / 2; ++y) {  // row in [0, H)
-      int col = width / 2 + x;
-      int row = height / 2 - y - 1;
-      size_t p = size_t(row) * width + col;
-      // Supersampling: the N x N sub-pixel points (x + o_i, y + o_j),
-      // o_k = (k + 0.5) / N - 0.5; N = 1 is the point (x, y) itself.
-      // Sample s's colour; its primary hit goes to *hit_id.
-      auto sample = [&](int s, int32_t* hit_id, int32_t* shadowed) {
-        const double ox = ((s % n) + 0.5) / n - 0.5, oy = ((s / n) + 0.5) / n - 0.5;
-        // CanvasToViewport, then the camera rotation.
-        Vec3 d{(x + ox) * cam.viewport_w / width, (y + oy) * cam.viewport_h / height, cam.projection_plane_d};
-        Vec3 D{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
-               m[6] * d.x + m[7] * d.y + m[8] * d.z};
-        return tracer.TraceRay(cam.position, D, 1, kInf, depth, camera_medium, hit_id, shadowed);
-      };
-      // The classification is the first sample's.
-      Vec3 sum{0, 0, 0};
-      int traced = 0;
-      if (sampling.adaptive()) {
-        // The four corners of the grid; sample 0 first.
-        const int corners[4] = {0, n - 1, n * (n - 1), n * n - 1};
-        int32_t hits[4] = {-1, -1, -1, -1};
-        Vec3 c[4];
-        for (int k = 0; k < 4; ++k) c[k] = sample(corners[k], &hits[k], k == 0 ? &img.shadowed[p] : nullptr);
-        img.hit[p] = hits[0];
-        bool flat = hits[1] == hits[0] && hits[2] == hits[0] && hits[3] == hits[0];
-        for (double Vec3::*channel : {&Vec3::x, &Vec3::y, &Vec3::z}) {
-          const double lo = std::min({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
-          const double hi = std::max({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
-          flat = flat && hi - lo <= sampling.adaptive_threshold;
+  // Subsampling: the even columns first, each traced as usual; then the odd
+  // ones, from their neighbours' primary hits (scene/sampling.hpp).
+  const int passes = sampling.subsample != Subsample::Off ? 2 : 1;
+  for (int pass = 0; pass < passes; ++pass) {
+    for (int x = -width / 2; x < width - width / 2; ++x) {
+      const int col = width / 2 + x;
+      if (passes == 2 && col % 2 != pass) continue;
+      for (int y = height / 2 - height; y < height / 2; ++y) {  // row in [0, H)
+        int row = height / 2 - y - 1;
+        size_t p = size_t(row) * width + col;
+        if (pass == 1) {
+          // An odd column: both neighbours must exist and have hit the same
+          // primitive (or both missed) for the pixel to be assumed.
+          const bool assumed = col + 1 < width && img.hit[p - 1] == img.hit[p + 1];
+          if (assumed && sampling.subsample == Subsample::Interpolate) {
+            // the mean of the neighbours' canvas colours, no ray
+            for (int c = 0; c < 3; ++c)
+              img.rgb[p * 3 + c] =
+                  (double(to_u8(img.rgb[(p - 1) * 3 + c])) + double(to_u8(img.rgb[(p + 1) * 3 + c]))) / 2;
+            img.hit[p] = img.hit[p - 1];
+            img.shadowed[p] = img.shadowed[p - 1] & img.shadowed[p + 1];
+            continue;
+          }
+          if (assumed) {
+            const int32_t id = img.hit[p - 1];
+            Vec3 D{x * cam.viewport_w / width, y * cam.viewport_h / height, cam.projection_plane_d};
+            D = Vec3{m[0] * D.x + m[1] * D.y + m[2] * D.z, m[3] * D.x + m[4] * D.y + m[5] * D.z,
+                     m[6] * D.x + m[7] * D.y + m[8] * D.z};
+            Hit h;  // both neighbours missed: background, no search
+            if (id >= 0) {
+              h = tracer.IntersectOnly(id, cam.position, D, 1, kInf);
+              // the ray passes the assumed primitive by: search after all
+              if (!h.found()) h = tracer.ClosestIntersection(cam.position, D, 1, kInf);
+            }
+            const Vec3 c = tracer.ShadeHit(h, cam.position, D, depth, camera_medium, &img.hit[p], &img.shadowed[p]);
+            img.rgb[p * 3 + 0] = c.x;
+            img.rgb[p * 3 + 1] = c.y;
+            img.rgb[p * 3 + 2] = c.z;
+            continue;
+          }
         }
-        sum = c[0] + c[1] + c[2] + c[3];
-        traced = 4;
-        if (!flat) {
-          for (int s = 0; s < n * n; ++s)
-            if (s != corners[0] && s != corners[1] && s != corners[2] && s != corners[3])
-              sum = sum + sample(s, nullptr, nullptr);
+        // Supersampling: the N x N sub-pixel points (x + o_i, y + o_j),
+        // o_k = (k + 0.5) / N - 0.5; N = 1 is the point (x, y) itself.
+        // Sample s's colour; its primary hit goes to *hit_id.
+        auto sample = [&](int s, int32_t* hit_id, int32_t* shadowed) {
+          const double ox = ((s % n) + 0.5) / n - 0.5, oy = ((s / n) + 0.5) / n - 0.5;
+          // CanvasToViewport, then the camera rotation.
+          Vec3 d{(x + ox) * cam.viewport_w / width, (y + oy) * cam.viewport_h / height, cam.projection_plane_d};
+          Vec3 D{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
+                 m[6] * d.x + m[7] * d.y + m[8] * d.z};
+          return tracer.TraceRay(cam.position, D, 1, kInf, depth, camera_medium, hit_id, shadowed);
+        };
+        // The classification is the first sample's.
+        Vec3 sum{0, 0, 0};
+        int traced = 0;
+        if (sampling.adaptive()) {
+          // The four corners of the grid; sample 0 first.
+          const int corners[4] = {0, n - 1, n * (n - 1), n * n - 1};
+          int32_t hits[4] = {-1, -1, -1, -1};
+          Vec3 c[4];
+          for (int k = 0; k < 4; ++k) c[k] = sample(corners[k], &hits[k], k == 0 ? &img.shadowed[p] : nullptr);
+          img.hit[p] = hits[0];
+          bool flat = hits[1] == hits[0] && hits[2] == hits[0] && hits[3] == hits[0];
+          for (double Vec3::*channel : {&Vec3::x, &Vec3::y, &Vec3::z}) {
+            const double lo = std::min({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
+            const double hi = std::max({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
+            flat = flat && hi - lo <= sampling.adaptive_threshold;
+          }
+          sum = c[0] + c[1] + c[2] + c[3];
+          traced = 4;
+          if (!flat) {
+            for (int s = 0; s < n * n; ++s)
+              if (s != corners[0] && s != corners[1] && s != corners[2] && s != corners[3])
+                sum = sum + sample(s, nullptr, nullptr);
+            traced = n * n;
+          }
+        } else {
+          for (int s = 0; s < n * n; ++s) {
+            const bool first = s == 0;
+            Vec3 c = sample(s, first ? &img.hit[p] : nullptr, first ? &img.shadowed[p] : nullptr);
+            sum = first ? c : sum + c;
+          }
           traced = n * n;
         }
-      } else {
-        for (int s = 0; s < n * n; ++s) {
-          const bool first = s == 0;
-          Vec3 c = sample(s, first ? &img.hit[p] : nullptr, first ? &img.shadowed[p] : nullptr);
-          sum = first ? c : sum + c;
-        }
-        traced = n * n;
+        // The mean of the samples (for N = 1, the one sample's colour exactly).
+        const double samples = double(traced);
+        const Vec3 c{sum.x / samples, sum.y / samples, sum.z / samples};
+        img.rgb[p * 3 + 0] = c.x;
+        img.rgb[p * 3 + 1] = c.y;
+        img.rgb[p * 3 + 2] = c.z;
       }
-      // The mean of the samples (for N = 1, the one sample's colour exactly).
-      const double samples = double(traced);
-      const Vec3 c{sum.x / samples, sum.y / samples, sum.z / samples};
-      img.rgb[p * 3 + 0] = c.x;
-      img.rgb[p * 3 + 1] = c.y;
-      img.rgb[p * 3 + 2] = c.z;
     }
   }
   return img;

@@ -35,6 +35,13 @@ namespace clrt {
 // the pixel is their mean when they hit the same primitive (or all miss)
 // and each channel's largest minus smallest value among them is at most T;
 // otherwise the mean of all N^2 samples.
+//
+// Subsampling (sampling.subsample, spp 1; scene/sampling.hpp): the even
+// columns are traced first; then an odd column's pixel whose left and right
+// neighbours hit the same primitive is, with Shade, traced against that
+// primitive alone (the full search where it misses it; background where both
+// missed) and shaded as usual, with Interpolate the mean of their canvas
+// colours. Other pixels are traced as usual.
 Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling = {});
 
 }  // namespace clrt

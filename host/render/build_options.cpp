@@ -136,6 +136,8 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
   // What the kernel stores per pixel: only what the caller reads.
   if (cfg.output.pixels == PixelFormat::Rgba8) options.push_back("-DCLRT_OUT_RGBA8");
   if (cfg.output.classes) options.push_back("-DCLRT_OUT_CLASSES");
+  if (cfg.subsample != Subsample::Off)
+    options.push_back(define("CLRT_SUBSAMPLE", cfg.subsample == Subsample::Shade ? 1 : 2));
   if (int lanes = kernel_lanes(cfg); lanes > 1) options.push_back(define("CLRT_LANES", lanes));
   if (int rows = packet_rows(cfg); rows > 1) options.push_back(define("CLRT_PACKET_ROWS", rows));
   if (uses_bvh(cfg.accel, features.sphere_count + features.triangle_count, cfg.precision))

@@ -9,6 +9,7 @@
 #include "render/bvh.hpp"
 #include "render/kernel_features.hpp"
 #include "render/precision.hpp"
+#include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
 namespace clrt {
@@ -27,6 +28,10 @@ struct KernelConfig {
   // What each pixel's result holds (8-bit or float colour, classification):
   // the kernel writes exactly this.
   FrameContents output;
+  // The book's subsampling (Sampling::subsample): two launches per tile,
+  // even columns then odd (-DCLRT_SUBSAMPLE=1 shade, 2 interpolate). Set by
+  // DeviceRenderer::prepare() from the frame's Sampling.
+  Subsample subsample = Subsample::Off;
 };
 
 // Pixels per work-item: cfg.lanes if set. The renderer sets it from

@@ -48,6 +48,13 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
                                       std::to_string(scene.spheres.size()) + " spheres, median " +
                                       std::to_string(median_sphere_pixels(scene, width)) + " px on the image)");
   }
+  if (sampling.subsample != Subsample::Off && sampling.spp != 1)
+    throw UserError("subsampling needs one sample per pixel (--spp 1)");
+  if (sampling.subsample != config_.subsample) {
+    drain();
+    for (ResultSlot& slot : slots_) slot.capacity = 0;  // the hit-id buffers' sizes change
+    config_.subsample = sampling.subsample;
+  }
   std::string opts = build_options(config_, scene, depth, device_.fp64);
   if (opts != options_ || !kernel_()) {
     BuildStats bs;
@@ -120,10 +127,15 @@ void DeviceRenderer::ensure_slot(ResultSlot& slot, size_t pixels) {
   // and mapped after each tile (no copy); elsewhere they are read into the
   // slot's host vectors. Buffers the kernel does not write (classification,
   // counters) get one element.
-  const cl_mem_flags flags = CL_MEM_WRITE_ONLY | (map_results_ ? CL_MEM_ALLOC_HOST_PTR : 0);
+  // (subsampling's second launch reads what its first stored: hit ids, and
+  // colours when it interpolates)
+  const bool subsample = config_.subsample != Subsample::Off;
+  const cl_mem_flags flags =
+      (subsample ? CL_MEM_READ_WRITE : CL_MEM_WRITE_ONLY) | (map_results_ ? CL_MEM_ALLOC_HOST_PTR : 0);
   slot.colors = cl::Buffer(context_, flags, pixels * colour_bytes_per_pixel());
-  slot.classes = cl::Buffer(context_, flags, (config_.output.classes ? pixels : 1) * 2 * sizeof(cl_int));
-  slot.counters = cl::Buffer(context_, CL_MEM_WRITE_ONLY, (config_.count_rays ? pixels : 1) * sizeof(clrt_ray_counts));
+  slot.classes = cl::Buffer(context_, flags, (config_.output.classes || subsample ? pixels : 1) * 2 * sizeof(cl_int));
+  slot.counters = cl::Buffer(context_, subsample ? CL_MEM_READ_WRITE : CL_MEM_WRITE_ONLY,
+                             (config_.count_rays ? pixels : 1) * sizeof(clrt_ray_counts));
   slot.capacity = pixels;
 }
 
@@ -171,22 +183,39 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   kernel_.setArg(13, triangles_);
   kernel_.setArg(14, materials_);
   // Each work-item shades a block of kernel_lanes(config_) pixels,
-  // packet_rows(config_) of them high.
+  // packet_rows(config_) of them high. With subsampling a tile is two
+  // launches (kernels/trace.cl): the ones that take every other column
+  // cover at most (w + 1) / 2 columns.
   const size_t rows = size_t(packet_rows(config_)), cols = size_t(kernel_lanes(config_)) / rows;
-  const size_t gw = (size_t(w) + cols - 1) / cols, gh = (size_t(h) + rows - 1) / rows;
   // Always an explicit local size: with NullRange the implementation picks
   // one from the global size, which changes with every band height, and
   // PoCL compiles a new work-group function for each (measured: 1.2 s per
   // 640x480 frame of 5 ms bands instead of 20 ms; docs/performance.md).
   // (check_local_size() bounded both by the device's limits.)
   const size_t lx = size_t(local_.x > 0 ? local_.x : default_local_x_), ly = size_t(local_.y > 0 ? local_.y : 1);
-  // Pad the global size to a multiple of the local size, in size_t (no
-  // overflow for any tile and local size the checks let through); the
-  // kernel ignores work-items outside the tile. Every pixel must be covered.
-  const size_t global_x = (gw + lx - 1) / lx * lx, global_y = (gh + ly - 1) / ly * ly;
-  if (global_x < gw || global_y < gh) throw std::logic_error("launch does not cover the tile");
-  cl::NDRange global(global_x, global_y), local(lx, ly);
-  tile.launch = start_timed(queue_, kernel_, global, local);
+  const cl::NDRange local(lx, ly);
+  // The global size for `columns` columns of the tile, padded to a multiple
+  // of the local size, in size_t (no overflow for any tile and local size
+  // the checks let through); the kernel ignores work-items outside the
+  // tile. Every pixel must be covered.
+  auto global_for = [&](size_t columns) {
+    const size_t gw = (columns + cols - 1) / cols, gh = (size_t(h) + rows - 1) / rows;
+    const size_t global_x = (gw + lx - 1) / lx * lx, global_y = (gh + ly - 1) / ly * ly;
+    if (global_x < gw || global_y < gh) throw std::logic_error("launch does not cover the tile");
+    return cl::NDRange(global_x, global_y);
+  };
+  const size_t every_other = (size_t(w) + 1) / 2;
+  const Subsample mode = config_.subsample;
+  kernel_.setArg(15, cl_int(0));
+  tile.launch = start_timed(queue_, kernel_, global_for(mode == Subsample::Off ? size_t(w) : every_other), local);
+  if (mode != Subsample::Off) {
+    // Pass 1 after pass 0 (an in-order queue): timed as one launch, from
+    // the first's start to the second's end. Shade's pass 1 shades every
+    // column, interpolate's the odd ones.
+    kernel_.setArg(15, cl_int(1));
+    tile.launch = start_timed_after(tile.launch, queue_, kernel_,
+                                    global_for(mode == Subsample::Shade ? size_t(w) : every_other), local);
+  }
 
   if (!map_results_) {
     // The reads go on the second queue after the kernel: the next tile's

@@ -1,11 +1,36 @@
-// sampling.hpp - how a pixel is sampled: N x N supersampling (--spp) and the
-// book's adaptive variant (--adaptive T). A render setting, like the image
-// size: the scene format has no field for it. The rule, stated in both
-// engines (reference/reference.hpp, kernels/trace.cl), is in the README
-// ("Anti-aliasing").
+// sampling.hpp - how a pixel is sampled: N x N supersampling (--spp), the
+// book's adaptive variant (--adaptive T) and its subsampling (--subsample).
+// A render setting, like the image size: the scene format has no field for
+// it. The rules, stated in both engines (reference/reference.hpp,
+// kernels/trace.cl), are in the README ("Anti-aliasing", "Subsampling").
 #pragma once
+#include <string>
 
 namespace clrt {
+
+// The book's subsampling (chapter 5), an "impure" speed-up: the pixels of
+// even columns are traced as usual; a pixel of an odd column whose left and
+// right neighbours' camera rays hit the same primitive (or both missed) is
+// not searched for:
+//   Shade: it is assumed to hit that primitive (its ray is tested against
+//     that primitive alone, with the full search only where it misses it;
+//     two missing neighbours make it background), and everything after the
+//     hit - lighting, shadows, reflection, refraction - is computed as
+//     usual. Wrong only where something narrower than two pixels hides
+//     between the neighbours.
+//   Interpolate: no ray at all; its colour is the mean of its neighbours'
+//     8-bit colours (after the canvas rule), its hit theirs, its shadow
+//     mask the lights both neighbours have blocked. Wrong wherever shading
+//     is not linear across three pixels (highlights, shadow edges,
+//     reflections).
+// Other pixels of odd columns, and the image's last column when it is odd,
+// are traced as usual. Columns are counted over the whole image, so the rule
+// does not depend on how a frame is cut into bands. One sample per pixel.
+enum class Subsample { Off, Shade, Interpolate };
+
+inline std::string subsample_name(Subsample mode) {
+  return mode == Subsample::Shade ? "shade" : mode == Subsample::Interpolate ? "interpolate" : "off";
+}
 
 struct Sampling {
   int spp = 1;  // N: N x N stratified samples per pixel (1..CLRT_MAX_SPP)
@@ -16,8 +41,11 @@ struct Sampling {
   // N^2 samples are traced. Negative: off (every pixel traces N^2).
   double adaptive_threshold = -1;
 
+  Subsample subsample = Subsample::Off;  // (above; spp 1 only)
+
   Sampling() = default;
-  Sampling(int samples_per_axis, double threshold = -1) : spp(samples_per_axis), adaptive_threshold(threshold) {}
+  Sampling(int samples_per_axis, double threshold = -1, Subsample subsampling = Subsample::Off)
+      : spp(samples_per_axis), adaptive_threshold(threshold), subsample(subsampling) {}
   // Adaptive sampling needs a grid with corners to refine from: N >= 3 (at
   // N = 2 the corners are every sample).
   bool adaptive() const { return adaptive_threshold >= 0 && spp >= 3; }

@@ -9,6 +9,20 @@
 #include "cli_run.hpp"
 #include "test_util.hpp"
 
+namespace {
+
+// The field of `row` in the column `name` of `header` ("?" when there is
+// none); no field of the rows these tests read holds a comma.
+std::string csv_column(const std::string& header, const std::string& row, const std::string& name) {
+  std::istringstream h(header), v(row);
+  std::string hn, vv;
+  while (std::getline(h, hn, ',') && std::getline(v, vv, ','))
+    if (hn == name) return vv;
+  return "?";
+}
+
+}  // namespace
+
 TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench][opencl]") {
   // 320x240: launches of about a millisecond, so that a loaded machine's
   // scheduling delay cannot make PoCL's events look implausibly short
@@ -130,15 +144,11 @@ TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep
   std::vector<std::string> rows;
   while (std::getline(csv, line)) rows.push_back(line);
   REQUIRE(rows.size() == 3);
-  CHECK(header.rfind("device,depth,kernel_ms_median", 0) == 0);
+  // The report header's columns first (README "Machine-readable output").
+  CHECK(header.rfind("clrt_version,timestamp_utc,device_driver,device,depth,kernel_ms_median", 0) == 0);
+  CHECK(header.find(",error_pixels_off_by_gt1,") != std::string::npos);
   // Depth 0 traces no reflection ray: the rays_reflection column is 0.
-  auto column = [&](const std::string& row, const std::string& name) {
-    std::istringstream h(header), v(row);
-    std::string hn, vv;
-    while (std::getline(h, hn, ',') && std::getline(v, vv, ','))
-      if (hn == name) return vv;
-    return std::string("?");
-  };
+  auto column = [&](const std::string& row, const std::string& name) { return csv_column(header, row, name); };
   CHECK(column(rows[0], "depth") == "0");
   CHECK(column(rows[0], "rays_reflection") == "0");
   CHECK(column(rows[0], "rays_primary") == "768");
@@ -157,22 +167,17 @@ TEST_CASE("clrt scaling writes one CSV row per count and a log-log plot", "[cli]
   std::ifstream csv(dir / "s.csv");
   std::string header, line;
   REQUIRE(std::getline(csv, header));
-  CHECK(header.rfind("spheres,json_bytes,parse_ms,", 0) == 0);
+  CHECK(header.rfind("clrt_version,timestamp_utc,device_driver,device,spheres,json_bytes,parse_ms,", 0) == 0);
   std::vector<std::string> rows;
   while (std::getline(csv, line)) rows.push_back(line);
   REQUIRE(rows.size() == 2);
-  CHECK(rows[0].rfind("8,", 0) == 0);
-  CHECK(rows[1].rfind("40,", 0) == 0);
+  auto column = [&](const std::string& row, const std::string& name) { return csv_column(header, row, name); };
+  CHECK(column(rows[0], "spheres") == "8");
+  CHECK(column(rows[1], "spheres") == "40");
   // 8 spheres (and the floor) test every sphere; 40 walk the hierarchy
-  // (kBvhMinSpheres = 32): bvh_bytes, the sixth column.
-  auto column = [](const std::string& row, int k) {
-    std::stringstream in(row);
-    std::string field;
-    for (int i = 0; i <= k; ++i) std::getline(in, field, ',');
-    return field;
-  };
-  CHECK(column(rows[0], 5) == "0");
-  CHECK(std::stod(column(rows[1], 5)) > 0);
+  // (kBvhMinSpheres = 32): bvh_bytes.
+  CHECK(column(rows[0], "bvh_bytes") == "0");
+  CHECK(std::stod(column(rows[1], "bvh_bytes")) > 0);
   CHECK(std::filesystem::file_size(dir / "s.png") > 1000);
 }
 

@@ -10,6 +10,7 @@
 #include "eval/accuracy.hpp"
 #include "render/precision_support.hpp"
 #include "test_util.hpp"
+#include "util/error.hpp"
 
 using namespace clrt;
 
@@ -20,8 +21,8 @@ TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl]") {
   std::vector<NamedScene> scenes{{"cgfs-demo.json", clrt_test::load("scenes/cgfs-demo.json")}};
   const DeviceInfo dev = clrt_test::test_device();
   auto rows = measure_accuracy(scenes, dev, s);
-  REQUIRE(rows.size() == all_precisions().size());
-  const AccuracyRow *naive = nullptr, *robust = nullptr;
+  REQUIRE(rows.size() == default_accuracy_variants().size());
+  const AccuracyRow *naive = nullptr, *robust = nullptr, *shade = nullptr, *interpolate = nullptr;
   for (const auto& r : rows) {
     INFO(r.variant);
     CHECK(r.depth == 3);
@@ -38,6 +39,8 @@ TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl]") {
     CHECK(r.error.psnr_8bit > 20);  // every variant renders the scene, not noise
     if (r.variant == "naive") naive = &r;
     if (r.variant == "robust") robust = &r;
+    if (r.variant == "robust+subsample-shade") shade = &r;
+    if (r.variant == "robust+subsample-interpolate") interpolate = &r;
     if (r.variant == "fp64") {
       // fp64 rebuilds the scene's doubles from float hi+lo pairs (~48 bits):
       // no pixel may be off by more than rounding.
@@ -53,6 +56,24 @@ TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl]") {
   CHECK(robust->error.percent_off_by_gt1() <= 0.05);
   CHECK(naive->error.rmse_8bit > 5 * robust->error.rmse_8bit);
   CHECK(naive->error.shadow_flips + naive->error.hit_flips >= robust->error.shadow_flips + robust->error.hit_flips);
+  // Subsampling against the exact reference: the shade mode only errs where
+  // something narrower than two pixels hides (nothing on the demo's four
+  // large spheres), so it stays within robust's tolerance; interpolation
+  // changes highlights, shadow edges and reflections.
+  REQUIRE(shade);
+  REQUIRE(interpolate);
+  CHECK(shade->error.percent_off_by_gt1() <= 0.05);
+  CHECK(interpolate->error.percent_off_by_gt1() > shade->error.percent_off_by_gt1());
+  CHECK(interpolate->error.rmse_8bit > robust->error.rmse_8bit);
+}
+
+TEST_CASE("accuracy variants: names and subsampling modes", "[accuracy]") {
+  for (const AccuracyVariant& v : default_accuracy_variants()) CHECK(parse_accuracy_variant(v.name()) == v);
+  CHECK(parse_accuracy_variant("fp64+subsample-interpolate").precision == Precision::Fp64);
+  CHECK(parse_accuracy_variant("naive+subsample-shade").subsample == Subsample::Shade);
+  CHECK_THROWS_AS(parse_accuracy_variant("robust+subsample-half"), UserError);
+  CHECK_THROWS_AS(parse_accuracy_variant("robust+subsample-"), UserError);
+  CHECK_THROWS_AS(parse_accuracy_variant("+subsample-shade"), UserError);
 }
 
 TEST_CASE("clrt accuracy writes table, JSON, CSV and a non-empty plot", "[accuracy][cli][opencl]") {

@@ -62,7 +62,7 @@ TEST_CASE("clrt compare exit codes: 0 within the limits, 1 outside, 2 bad input"
   CHECK(json.status == 1);
   auto j = nlohmann::json::parse(json.out);
   CHECK(j["verdict"] == "fail");
-  CHECK(j["fail_max"] == 1);
+  CHECK(j["fail_max_8bit"] == 1);
   CHECK(j["worst_pixel"]["x"].get<int>() >= 0);
   CHECK(j["max_abs_8bit"].get<int>() > 1);
   // Bad limits are bad input.

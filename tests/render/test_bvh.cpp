@@ -95,10 +95,10 @@ size_t pixels_differing(const Image& a, const Image& b) {
 }
 
 Image render(const Scene& scene, int width, int height, int depth, KernelConfig config, Accel accel,
-             FrameStats* stats = nullptr) {
+             FrameStats* stats = nullptr, Sampling sampling = {}) {
   config.accel = accel;
   Renderer renderer = clrt_test::renderer(config);
-  renderer.prepare(scene, width, height, depth);
+  renderer.prepare(scene, width, height, depth, sampling);
   Image image = renderer.render();
   if (stats) *stats = renderer.stats();
   return image;
@@ -247,8 +247,8 @@ TEST_CASE("BVH images equal brute-force images on the stiff and extreme cases", 
       KernelConfig config;
       config.precision = p;
       config.specialize = false;  // one program per variant for the whole suite
-      CHECK(pixels_differing(render(c.scene, 48, 36, c.depth, config, Accel::Bvh),
-                             render(c.scene, 48, 36, c.depth, config, Accel::None)) == 0);
+      CHECK(pixels_differing(render(c.scene, 48, 36, c.depth, config, Accel::Bvh, nullptr, c.sampling),
+                             render(c.scene, 48, 36, c.depth, config, Accel::None, nullptr, c.sampling)) == 0);
     }
   }
 }

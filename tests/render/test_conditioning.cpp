@@ -66,7 +66,8 @@ TEST_CASE("the demo's floor is compensated, the book's unit spheres are not", "[
   // The floor's error alone, without the safety factor, is already above
   // epsilon: u (3 * 5000 + 5001) = 1.19e-3.
   CHECK(uncompensated_error(demo.spheres[3], camera) == Approx(0x1p-24 * 20001));
-  // Every shipped scene is the book's: only its floor.
+  // Every shipped scene is the book's: only its floor (glass.json stands on
+  // a plane: nothing to compensate).
   for (const auto& path : clrt_test::shipped_scenes()) {
     INFO(path);
     const Scene s = load_scene(path);
@@ -75,7 +76,8 @@ TEST_CASE("the demo's floor is compensated, the book's unit spheres are not", "[
       CHECK(needs_compensation(sphere, s) == (sphere.radius >= 1000));
       flagged += needs_compensation(sphere, s);
     }
-    CHECK(flagged == 1);
+    const bool plane_floor = path.size() >= 10 && path.compare(path.size() - 10, 10, "glass.json") == 0;
+    CHECK(flagged == (plane_floor ? 0u : 1u));
   }
 }
 

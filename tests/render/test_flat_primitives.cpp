@@ -6,6 +6,7 @@
 #include <string>
 
 #include "eval/compare.hpp"
+#include "flat_scene.hpp"
 #include "reference/reference.hpp"
 #include "render/build_options.hpp"
 #include "render/renderer.hpp"
@@ -28,24 +29,6 @@ Image render(const KernelConfig& cfg, const Scene& s, int w, int h, int depth, A
   Image img = r.render();
   if (stats) *stats = r.stats();
   return img;
-}
-
-// A reflective plane floor, a sphere, a tilted plane far behind and two
-// triangles (one leaning over the floor, one standing on it but clear of
-// it: no primitive touches another, so no pixel's nearest hit is a tie).
-Scene flat_scene() {
-  return parse_scene(R"({"camera": {"position": [0, 0.5, -1]}, "background": [20, 30, 50],
-      "spheres": [{"center": [-1.5, 0, 4], "radius": 1, "color": [255, 0, 0], "specular": 500, "reflective": 0.2}],
-      "planes": [{"point": [0, -1, 0], "normal": [0, 2, 0], "color": [200, 200, 100], "specular": 1000,
-                  "reflective": 0.3},
-                 {"point": [0, 0, 30], "normal": [0.2, 0.1, -1], "color": [90, 90, 200]}],
-      "triangles": [{"vertices": [[0.5, -0.9, 5], [2.5, -0.9, 5], [1.5, 1.5, 5.5]], "color": [0, 128, 255],
-                     "specular": 100, "reflective": 0.1},
-                    {"vertices": [[-0.5, 0.8, 3], [0.4, 1.2, 3.5], [-0.2, 0.2, 2.5]], "color": [255, 255, 255],
-                     "reflective": 0.6}],
-      "lights": [{"type": "ambient", "intensity": 0.2}, {"type": "point", "intensity": 0.6, "position": [2, 1, 0]},
-                 {"type": "directional", "intensity": 0.2, "direction": [1, 4, 4]}]})",
-                     "flat");
 }
 
 // A wall of triangles at z = 5 in front of the camera (at the origin,
@@ -79,7 +62,7 @@ TEST_CASE("OpenCL matches the reference on planes and triangles", "[opencl][flat
   // The tolerance of `clrt stability` (within_tolerance(), eval/compare.hpp):
   // float32 decides rays that graze a silhouette or edge differently from
   // double.
-  const Scene s = flat_scene();
+  const Scene s = clrt_test::flat_scene();
   const DeviceInfo dev = clrt_test::test_device();
   for (int depth : {0, 1, 3}) {
     const Image ref = render_reference(s, kW, kH, depth);
@@ -98,7 +81,7 @@ TEST_CASE("OpenCL matches the reference on planes and triangles", "[opencl][flat
 }
 
 TEST_CASE("the reference numbers hits over spheres, then planes, then triangles", "[reference][flat]") {
-  const Scene s = flat_scene();
+  const Scene s = clrt_test::flat_scene();
   const Image ref = render_reference(s, kW, kH, 0);
   std::vector<int> seen(5, 0);
   for (int32_t id : ref.hit) {
@@ -110,7 +93,7 @@ TEST_CASE("the reference numbers hits over spheres, then planes, then triangles"
 }
 
 TEST_CASE("specialized and generic kernels agree on planes and triangles", "[opencl][flat][specialize]") {
-  const Scene s = flat_scene();
+  const Scene s = clrt_test::flat_scene();
   KernelConfig generic;
   generic.specialize = false;
   for (int lanes : clrt_test::every_build() ? std::vector<int>{1, 4, 8, 16} : std::vector<int>{0}) {
@@ -127,7 +110,7 @@ TEST_CASE("scenes without planes or triangles compile neither", "[flat][speciali
   const std::string demo_options = build_options(cfg, demo, 3, false);
   CHECK(demo_options.find("-DCLRT_HAS_PLANES=0") != std::string::npos);
   CHECK(demo_options.find("-DCLRT_HAS_TRIANGLES=0") != std::string::npos);
-  const std::string flat_options = build_options(cfg, flat_scene(), 3, false);
+  const std::string flat_options = build_options(cfg, clrt_test::flat_scene(), 3, false);
   CHECK(flat_options.find("-DCLRT_HAS_PLANES=1") != std::string::npos);
   CHECK(flat_options.find("-DCLRT_HAS_TRIANGLES=1") != std::string::npos);
 }
