@@ -153,35 +153,57 @@ void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string&
   write_text_atomic(path, accuracy_csv(rows, device), "CSV");
 }
 
-void write_accuracy_plot(const std::vector<AccuracyRow>& rows, const std::string& path, const std::string& title) {
-  // Log scale: an exact variant (RMSE 0) is drawn at a floor one decade under
+PlotPanel accuracy_plot_panel(const std::vector<AccuracyRow>& rows, const std::string& title) {
+  // Log-log: an exact variant (RMSE 0) is drawn at a floor one decade under
   // the smallest non-zero RMSE and labelled "(0)".
   double min_pos = 1;
   for (const auto& r : rows)
     if (r.supported && r.error.rmse_8bit > 0) min_pos = std::min(min_pos, r.error.rmse_8bit);
   const double floor = min_pos / 10;
-  bool many_scenes = false;
-  for (const auto& r : rows) many_scenes |= r.scene != rows.front().scene;
-  std::vector<Series> series;
-  std::map<std::string, size_t> index;
+  // Colour by variant name (a fixed table, whatever the order of
+  // --variants), marker by scene (in the order given).
+  std::vector<std::string> variants, scenes;
   for (const auto& r : rows) {
     if (!r.supported) continue;
-    if (!index.count(r.variant)) {
-      index[r.variant] = series.size();
-      series.emplace_back(r.variant, std::vector<double>{}, std::vector<double>{});
-    }
-    Series& s = series[index[r.variant]];
-    s.x.push_back(r.median_ms);
+    if (std::find(variants.begin(), variants.end(), r.variant) == variants.end()) variants.push_back(r.variant);
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+  }
+  std::vector<Series> series;
+  for (const auto& v : variants) {  // legend entries: a line in the variant's colour
+    Series s(v, {}, {});
+    s.lines = true, s.markers = false;
+    s.color = plot_color_for_name(v);
+    series.push_back(s);
+  }
+  for (size_t k = 0; k < scenes.size(); ++k) {  // and a black marker per scene
+    Series s(std::filesystem::path(scenes[k]).stem().string(), {}, {});
+    s.color = {0, 0, 0};
+    s.marker = int(k);
+    series.push_back(s);
+  }
+  for (const auto& r : rows) {  // the points: one series per variant and scene
+    if (!r.supported) continue;
+    Series s;
+    s.color = plot_color_for_name(r.variant);
+    s.marker = int(std::find(scenes.begin(), scenes.end(), r.scene) - scenes.begin());
     const bool exact = r.error.rmse_8bit <= 0;
+    s.x.push_back(r.median_ms);
     s.y.push_back(exact ? floor : r.error.rmse_8bit);
-    std::string label = r.variant + (many_scenes ? " " + std::filesystem::path(r.scene).stem().string() : "");
-    if (exact) label += " (0)";
-    s.labels.push_back(label);
+    if (!r.kernel_ms.empty()) {  // min-max of the timed runs
+      s.x_lo.push_back(*std::min_element(r.kernel_ms.begin(), r.kernel_ms.end()));
+      s.x_hi.push_back(*std::max_element(r.kernel_ms.begin(), r.kernel_ms.end()));
+    }
+    s.labels.push_back(exact ? r.variant + " (0)" : "");
+    series.push_back(s);
   }
   PlotOptions o;
-  o.log_y = true;
-  write_plot(path, title, "kernel time, median (ms)", "RMSE vs double reference, 8-bit levels (0 at the bottom)",
-             series, o);
+  o.log_x = o.log_y = true;
+  return {title, "kernel time, median (ms; bar: min-max)", "RMSE vs double reference, 8-bit levels (0 at the bottom)",
+          series, o};
+}
+
+void write_accuracy_plot(const std::vector<AccuracyRow>& rows, const std::string& path, const std::string& title) {
+  write_plot(path, {accuracy_plot_panel(rows, title)});
 }
 
 }  // namespace clrt

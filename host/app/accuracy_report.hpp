@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "eval/accuracy.hpp"
+#include "image/plot.hpp"
 
 namespace clrt {
 
@@ -15,8 +16,10 @@ std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySe
 // kernel_ms_median, kernel_time_source, then compare's metric columns.
 std::string accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& device);
 void write_accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& path, const std::string& device);
-// Error (RMSE, 8-bit levels, log scale) against median kernel time; one series
-// per variant, one point per scene. RMSE 0 is drawn at a floor and labelled.
+// Error (RMSE, 8-bit levels) against median kernel time (min-max bars), both
+// axes log; a fixed colour per variant name (plot_color_for_name), a marker
+// per scene. RMSE 0 is drawn at a floor and labelled. PNG, SVG or PDF.
+PlotPanel accuracy_plot_panel(const std::vector<AccuracyRow>& rows, const std::string& title);
 void write_accuracy_plot(const std::vector<AccuracyRow>& rows, const std::string& path, const std::string& title);
 
 }  // namespace clrt

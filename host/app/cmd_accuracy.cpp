@@ -9,9 +9,11 @@
 #include "cl/device.hpp"
 #include "eval/accuracy.hpp"
 #include "image/image_file.hpp"
+#include "image/plot.hpp"
 #include "scene/scene_json.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
+#include "util/progress.hpp"
 
 namespace clrt {
 
@@ -59,10 +61,10 @@ void add_accuracy_command(CLI::App& app) {
   cmd->add_flag("--json", o->json, "Print one JSON object instead of the table");
   cmd->add_flag("--markdown", o->markdown, "Print the table as Markdown");
   cmd->add_option("--csv", o->csv, "Also write the rows as CSV to this file");
-  cmd->add_option("--plot", o->plot, "Also write an error-vs-time chart (PNG) to this file");
+  cmd->add_option("--plot", o->plot, "Also write an error-vs-time chart (log-log) here: .png, .svg or .pdf");
   cmd->callback([o] {
     o->image.validate();
-    if (!o->plot.empty()) check_output_format(o->plot);
+    if (!o->plot.empty()) check_plot_output(o->plot);    // fail before measuring
     if (!o->csv.empty()) check_writable(o->csv, "CSV");  // fail before measuring, not after
     AccuracySettings s;
     s.width = o->image.width;
@@ -74,9 +76,10 @@ void add_accuracy_command(CLI::App& app) {
     s.base = o->kernel.config();
     s.variants = parse_variants(o->variants);
     std::vector<NamedScene> scenes;
-    for (const auto& p : o->scenes) scenes.push_back({p, load_scene(p)});
+    for (const auto& p : o->scenes) scenes.push_back({p, o->image.load_scene(p)});
     const DeviceInfo dev = o->device.one();
     const std::string device = dev.name;
+    s.progress = stderr_progress();  // on a terminal only, not with --quiet
     auto rows = measure_accuracy(scenes, dev, s);
     if (!o->csv.empty()) write_accuracy_csv(rows, o->csv, device);
     if (!o->plot.empty())

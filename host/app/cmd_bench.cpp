@@ -8,6 +8,7 @@
 #include "scene/scene_json.hpp"
 #include "util/error.hpp"
 #include "util/json_text.hpp"
+#include "util/progress.hpp"
 
 namespace clrt {
 
@@ -43,7 +44,7 @@ void add_bench_command(CLI::App& app) {
       ->group(kDeveloperGroup);
   cmd->callback([o, repeat, as_json, no_omp, no_embree, no_reference, float_frames, no_map, no_overlap] {
     o->validate();
-    Scene scene = load_scene(o->scene_path);
+    Scene scene = o->image.load_scene(o->scene_path);
     BenchSettings s;
     s.width = o->image.width;
     s.height = o->image.height;
@@ -55,6 +56,7 @@ void add_bench_command(CLI::App& app) {
     s.omp = !*no_omp;
     s.embree = !*no_embree;
     s.reference = !*no_reference;
+    s.progress = stderr_progress();  // on a terminal only, not with --quiet
     // Frames in an output's format, without the per-pixel classification
     // that only comparisons with the reference read.
     RenderSettings settings = o->settings();

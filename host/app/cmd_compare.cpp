@@ -44,7 +44,7 @@ void add_compare_command(CLI::App& app) {
     }
     o->validate();
     if (!diff->empty()) check_output_format(*diff);
-    Scene scene = load_scene(o->scene_path);
+    Scene scene = o->image.load_scene(o->scene_path);
     int depth = o->image.effective_depth(scene);
     EngineRun ref_run, cl_run;
     Image ref = run_engine("reference", scene, *o, depth, &ref_run);

@@ -11,6 +11,7 @@
 #include "scene/scene_json.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
+#include "util/progress.hpp"
 
 #ifndef CLRT_VERSION
 #define CLRT_VERSION "unknown"
@@ -72,7 +73,7 @@ void add_render_command(CLI::App& app) {
   cmd->callback([o, out, format] {
     o->validate();
     const OutputTarget target = check_output_format(*out, *format);  // fail before rendering
-    Scene scene = load_scene(o->scene_path);
+    Scene scene = o->image.load_scene(o->scene_path);
     int depth = o->image.effective_depth(scene);
     EngineRun run;
     // The kernel writes what the file needs: 8-bit RGBA for 8-bit formats,
@@ -82,6 +83,7 @@ void add_render_command(CLI::App& app) {
     write_image(img, *out, render_metadata(*o, depth, run), *format);
     // The report goes to stderr when the image itself goes to stdout.
     std::FILE* report = target.kind == OutputKind::File ? stdout : stderr;
+    if (report == stderr && quiet()) return;  // --quiet: only the image
     if (o->engine == "opencl")
       std::fprintf(report, "%s: %dx%d depth %d on %s: kernel %.2f ms%s, build %.1f ms%s\n", out->c_str(),
                    o->image.width, o->image.height, depth, run.device.c_str(), run.frame.kernel_ms,

@@ -1,11 +1,8 @@
 // cmd_scaling.cpp - `clrt scaling --spheres 1000,10000,...`: frame time
 // against the number of spheres, clrt beside the Embree tracer.
-#include <unistd.h>
-
 #include <cctype>
 #include <charconv>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <sstream>
 
@@ -13,6 +10,7 @@
 #include "app/scaling_report.hpp"
 #include "eval/scaling.hpp"
 #include "image/image_file.hpp"
+#include "image/plot.hpp"
 #include "scene/random_scene.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
@@ -72,12 +70,12 @@ void add_scaling_command(CLI::App& app) {
   add_repeat_option(cmd, *repeat, "Timed rounds per scene after one warm-up");
   cmd->add_flag("--no-embree", *no_embree, "Skip the Embree comparison");
   cmd->add_option("--csv", *csv, "Write the table as CSV to this file");
-  cmd->add_option("--plot", *plot, "Write a log-log plot of frame time against spheres here (PNG, ...)");
+  cmd->add_option("--plot", *plot, "Write a log-log plot of frame time against spheres here: .png, .svg or .pdf");
   cmd->callback([=] {
     image->validate();
     launch->validate();
     settings->counts = parse_counts(*counts);
-    if (!plot->empty()) check_output_format(*plot);  // fail before measuring
+    if (!plot->empty()) check_plot_output(*plot);  // fail before measuring
     if (!csv->empty()) check_writable(*csv, "CSV");
     settings->bench.width = image->width;
     settings->bench.height = image->height;
@@ -88,10 +86,7 @@ void add_scaling_command(CLI::App& app) {
     settings->bench.embree = !*no_embree;
     settings->bench.builds = false;
     settings->bench.peak = false;
-    if (isatty(STDERR_FILENO)) {
-      auto bar = std::make_shared<ProgressBar>(std::cerr);
-      settings->progress = [bar](int done, int total, const std::string& what) { bar->show(done, total, what); };
-    }
+    settings->progress = stderr_progress();  // on a terminal only, not with --quiet
     RenderSettings render{kernel->config(), launch->tiles(), launch->local()};
     render.kernel.output = {PixelFormat::Rgba8, /*classes=*/false};  // like bench: a PNG's frames
     const auto rows = run_scaling(device->devices(), render, *settings);

@@ -9,12 +9,23 @@
 #include "eval/stability.hpp"
 #include "util/error.hpp"
 #include "util/json_text.hpp"
+#include "util/progress.hpp"
 
 namespace clrt {
 
+namespace {
+// The suite's default size: 160 x 120.
+ImageOptions stability_image() {
+  ImageOptions image;
+  image.width = 160;
+  image.height = 120;
+  return image;
+}
+}  // namespace
+
 void add_stability_command(CLI::App& app) {
   struct Opts {
-    ImageOptions image{160, 120};
+    ImageOptions image = stability_image();
     DeviceOptions device;
     KernelOptions kernel;
     bool json = false, check = false;
@@ -31,7 +42,8 @@ void add_stability_command(CLI::App& app) {
     const int width = o->image.width, height = o->image.height;
     const auto cases = stability_suite();
     const DeviceInfo dev = o->device.one();
-    const StabilityRun run = run_stability(cases, all_precisions(), width, height, dev, o->kernel.config());
+    const StabilityRun run = run_stability(cases, all_precisions(), width, height, dev, o->kernel.config(),
+                                           stderr_progress());  // on a terminal only, not with --quiet
     if (o->json)
       std::printf("%s\n", json_text(stability_json(dev.name, width, height, cases, run)).c_str());
     else

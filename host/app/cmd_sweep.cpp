@@ -1,14 +1,12 @@
 // cmd_sweep.cpp - `clrt sweep SCENE --depths A:B`: bench per depth and device.
-#include <unistd.h>
-
 #include <cstdio>
-#include <iostream>
 #include <memory>
 
 #include "app/options.hpp"
 #include "app/sweep_report.hpp"
 #include "eval/sweep.hpp"
 #include "image/image_file.hpp"
+#include "image/plot.hpp"
 #include "scene/scene_json.hpp"
 #include "util/error.hpp"
 #include "util/json_text.hpp"
@@ -32,7 +30,8 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_option("--devices", *devices,
                   "Devices: index, P:D, list (0,1), 'all', or name substring; unset: those of --device");
   cmd->add_option("--csv", *csv, "Write the table as CSV to this file");
-  cmd->add_option("--plot", *plot, "Write a PNG of time per depth here (and rays per depth to NAME-rays.EXT)");
+  cmd->add_option("--plot", *plot,
+                  "Write time and error per depth here, .png, .svg or .pdf (and rays per depth to NAME-rays.EXT)");
   add_repeat_option(cmd, *repeat, "Timed kernel launches per depth after a warm-up");
   cmd->add_flag("--omp", *omp, "Also time the OpenMP float tracer at each depth");
   cmd->add_flag("--json", *as_json, "Print one JSON object instead of the table");
@@ -41,11 +40,11 @@ void add_sweep_command(CLI::App& app) {
     SweepSettings s;
     parse_depth_range(*depths, s.depth_from, s.depth_to);
     if (!plot->empty()) {  // both plots, before measuring
-      check_output_format(*plot);
-      check_output_format(rays_plot_path(*plot));
+      check_plot_output(*plot);
+      check_plot_output(rays_plot_path(*plot));
     }
     if (!csv->empty()) check_writable(*csv, "CSV");  // fail before measuring
-    Scene scene = load_scene(o->scene_path);
+    Scene scene = o->image.load_scene(o->scene_path);
     s.bench.width = o->image.width;
     s.bench.height = o->image.height;
     s.bench.spp = o->image.spp;
@@ -55,11 +54,7 @@ void add_sweep_command(CLI::App& app) {
     s.bench.omp = *omp;
     s.bench.embree = false;  // (bench's comparison; the sweep reports OpenMP only)
     s.bench.builds = false;
-    // On a terminal only: the bar redraws itself with carriage returns.
-    if (isatty(STDERR_FILENO)) {
-      auto bar = std::make_shared<ProgressBar>(std::cerr);
-      s.progress = [bar](int done, int total, const std::string& what) { bar->show(done, total, what); };
-    }
+    s.progress = stderr_progress();  // on a terminal only, not with --quiet
     auto devs = select_devices(devices->empty() ? o->device.device : *devices);
     auto rows = run_sweep(scene, devs, o->settings(), s);
     if (!*as_json) print_sweep(rows);

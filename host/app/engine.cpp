@@ -2,6 +2,7 @@
 #include "app/engine.hpp"
 
 #include "reference/reference.hpp"
+#include "util/progress.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -19,6 +20,7 @@ Image run_engine(const std::string& engine, const Scene& scene, const RenderOpti
   } else {
     RenderSettings settings = o.settings();
     settings.kernel.output = contents;
+    settings.progress = stderr_progress();  // big frames: rows done, on a terminal
     Renderer renderer(o.device.devices(), settings);
     renderer.prepare(scene, o.image.width, o.image.height, depth, o.image.sampling());
     img = renderer.render();

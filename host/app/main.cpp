@@ -11,7 +11,9 @@
 #include "cl/cl.hpp"
 #include "util/edit_distance.hpp"
 #include "util/error.hpp"
+#include "util/log.hpp"
 #include "util/output_file.hpp"
+#include "util/progress.hpp"
 
 // The version and build facts, from CMakeLists.txt (project(VERSION) and the
 // configuration), the one place they are written.
@@ -28,6 +30,7 @@ namespace {
 void report(std::string msg, const char* what = "error") {
   for (auto& c : msg)
     if (c == '\n' || c == '\r') c = ' ';
+  clrt::clear_progress_line();
   std::cerr << "clrt: " << what << ": " << msg << "\n";
 }
 
@@ -56,6 +59,7 @@ void check_command_names(CLI::App& app, int argc, char** argv) {
                             "subcommand is required (one of: " + command_list(*level) + ")");
     }
     const std::string word = argv[i];
+    if (level == &app && (word == "--quiet" || word == "-q")) continue;  // clrt --quiet COMMAND
     if (!word.empty() && word[0] == '-' && word != "--" && level == &app &&
         !app.get_option_no_throw(word.substr(0, word.find('='))))
       throw clrt::UserError("unknown option '" + word + "' (before the subcommand: --help or --version)");
@@ -78,6 +82,14 @@ void check_command_names(CLI::App& app, int argc, char** argv) {
   }
 }
 
+// -q/--quiet on clrt and on every (sub)command, so it goes anywhere on the line.
+void add_quiet_flag(CLI::App* cmd) {
+  cmd->add_flag_callback(
+      "-q,--quiet", [] { clrt::set_quiet(true); },
+      "No progress and no informational lines on stderr (errors and warnings stay)");
+  for (CLI::App* sub : cmd->get_subcommands({})) add_quiet_flag(sub);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -97,6 +109,14 @@ int main(int argc, char** argv) {
   clrt::add_stability_command(app);
   clrt::add_generate_command(app);
   clrt::add_cache_command(app);
+  add_quiet_flag(&app);
+  // Messages of the layers below: none of --verbose's with --quiet, and the
+  // progress line erased before any other.
+  clrt::set_log_sink([](clrt::LogLevel level, const std::string& message) {
+    if (level == clrt::LogLevel::Info && clrt::quiet()) return;
+    clrt::clear_progress_line();
+    clrt::write_log_to_stderr(level, message);
+  });
   clrt::install_signal_cleanup();
   try {
     check_command_names(app, argc, argv);

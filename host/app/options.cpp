@@ -1,11 +1,15 @@
 // options.cpp - the option groups: their flags, checks and conversions.
 #include "app/options.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "clrt_layout.h"
 #include "render/precision.hpp"
+#include "scene/scene_json.hpp"
+#include "scene/viewport.hpp"
 #include "util/error.hpp"
+#include "util/log.hpp"
 
 namespace clrt {
 
@@ -26,6 +30,13 @@ void ImageOptions::add(CLI::App* cmd, bool with_depth, bool with_spp, bool with_
                     "rest only where they hit different primitives or differ by more than this many 8-bit levels")
         ->check(CLI::Range(0.0, 1e6))
         ->default_str("");  // unset: off
+  if (with_spp)             // (the commands that render scene files)
+    cmd->add_option("--aspect", aspect,
+                    "viewport: the scene's viewport as given, stretched to the image (the book; the default unless the "
+                    "scene's camera says \"aspect\": \"image\"); image: keep the viewport's larger side and fit the "
+                    "other to the image, so that pixels are square")
+        ->check(CLI::IsMember({"viewport", "image"}))
+        ->default_str("");  // unset: the scene's
   if (with_spp && with_subsample)
     cmd->add_option("--subsample", subsample,
                     "The book's subsampling (one ray per pixel): trace the even columns; an odd column's pixel whose "
@@ -53,6 +64,20 @@ void ImageOptions::validate() const {
         std::to_string(spp) + ")");
   if (subsample != Subsample::Off && spp != 1)
     throw UserError("--subsample needs one sample per pixel (got --spp " + std::to_string(spp) + ")");
+}
+
+Scene ImageOptions::load_scene(const std::string& path) const {
+  Scene scene = clrt::load_scene(path);
+  if (!aspect.empty()) scene.camera.aspect_from_image = aspect == "image";
+  scene.camera = camera_for_image(scene.camera, width, height);
+  if (!square_pixels(scene.camera, width, height)) {
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.3g", pixel_aspect(scene.camera, width, height));
+    log_message(LogLevel::Warning, "pixels are not square (" + std::string(ratio) +
+                                       ":1): the viewport's shape is not " + std::to_string(width) + "x" +
+                                       std::to_string(height) + "'s; --aspect image fits it to the image");
+  }
+  return scene;
 }
 
 void DeviceOptions::add(CLI::App* cmd, bool several) {

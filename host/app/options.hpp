@@ -36,12 +36,19 @@ struct ImageOptions {
   double adaptive = -1;
   // --subsample MODE: the book's subsampling (scene/sampling.hpp), spp 1 only.
   Subsample subsample = Subsample::Off;
+  // --aspect viewport|image: overrides the scene camera's "aspect"
+  // (scene/viewport.hpp); "" = the scene's.
+  std::string aspect;
 
   // with_subsample: --subsample (commands that compare variants list it as one instead)
   void add(CLI::App* cmd, bool with_depth = true, bool with_spp = true, bool with_subsample = true);
   Sampling sampling() const { return Sampling(spp, adaptive, subsample); }
   void validate() const;
   int effective_depth(const Scene& s) const { return depth == kSceneDepth ? s.recursion_depth : depth; }
+  // Loads a scene for an image of this size: its camera as --aspect and the
+  // scene say (camera_for_image()), with a warning when its pixels are not
+  // square.
+  Scene load_scene(const std::string& path) const;
 };
 
 // --device: one device, or (several = true) a list / 'all'.

@@ -88,12 +88,19 @@ void print_scaling(const std::vector<ScalingRow>& rows) {
 void plot_scaling(const std::vector<ScalingRow>& rows, const std::string& path, const std::string& title) {
   Series clrt("clrt frame", {}, {}), embree("Embree frame (render only)", {}, {});
   clrt.lines = embree.lines = true;
-  for (const auto& r : rows) {
+  clrt.color = plot_color_for_name("clrt");
+  embree.color = plot_color_for_name("Embree");
+  embree.marker = 1;
+  for (const auto& r : rows) {  // median, bars from the fastest to the slowest frame
     clrt.x.push_back(double(r.spheres));
     clrt.y.push_back(r.bench.frame.median);
+    clrt.y_lo.push_back(r.bench.frame.min);
+    clrt.y_hi.push_back(r.bench.frame.max);
     if (r.bench.embree.n > 0) {
       embree.x.push_back(double(r.spheres));
       embree.y.push_back(r.bench.embree.median);
+      embree.y_lo.push_back(r.bench.embree.min);
+      embree.y_hi.push_back(r.bench.embree.max);
     }
   }
   std::vector<Series> series{clrt};
@@ -106,7 +113,7 @@ void plot_scaling(const std::vector<ScalingRow>& rows, const std::string& path, 
     full_title +=
         " (" + std::to_string(b.width) + "x" + std::to_string(b.height) + ", depth " + std::to_string(b.depth) + ")";
   }
-  write_plot(path, full_title, "random spheres", "ms per frame (median)", series, po);
+  write_plot(path, full_title, "random spheres", "ms per frame (median; bar: min-max)", series, po);
 }
 
 }  // namespace clrt

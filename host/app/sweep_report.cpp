@@ -1,4 +1,4 @@
-// sweep_report.cpp - sweep rows as a table, CSV and two plots.
+// sweep_report.cpp - sweep rows as a table, CSV and two plot files.
 #include "app/sweep_report.hpp"
 
 #include <algorithm>
@@ -121,38 +121,69 @@ std::string rays_plot_path(const std::string& path) {
   return rays_path;
 }
 
-std::string plot_sweep(const std::vector<SweepRow>& rows, const std::string& path, const std::string& title) {
-  std::map<std::string, Series> time, rays;
+std::vector<PlotPanel> sweep_plot_panels(const std::vector<SweepRow>& rows, const std::string& title,
+                                         std::vector<PlotPanel>* rays_panel) {
+  // One series per device (by index and P:D: two devices of the same name
+  // stay apart), labelled "name [P:D]" when names repeat.
+  std::vector<std::pair<int, std::string>> keys;
+  std::map<std::string, int> name_count;
+  for (const auto& r : rows) {
+    const auto key = std::make_pair(r.device_index, r.device_pd);
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+      keys.push_back(key);
+      ++name_count[r.device];
+    }
+  }
+  const size_t n = keys.size();
+  std::vector<Series> time(n), error(n), rays(n);
   Series ref("reference (scalar double)", {}, {});
+  ref.lines = true;
+  ref.color = plot_color_for_name("reference");
+  ref.marker = 1;
   std::map<int, bool> ref_seen;
   for (const auto& r : rows) {
-    Series& t = time[r.device];
-    t.name = "OpenCL kernel, " + r.device;
-    t.lines = true;
-    t.x.push_back(r.depth);
-    t.y.push_back(r.bench.kernel.median);
-    Series& n = rays[r.device];
-    n.name = "rays traced, " + r.device;
-    n.lines = true;
-    n.x.push_back(r.depth);
-    n.y.push_back(r.bench.rays.total() * 1e-6);
+    const size_t k =
+        size_t(std::find(keys.begin(), keys.end(), std::make_pair(r.device_index, r.device_pd)) - keys.begin());
+    const std::string label =
+        r.device + (name_count[r.device] > 1
+                        ? " [" + (r.device_pd.empty() ? "#" + std::to_string(r.device_index) : r.device_pd) + "]"
+                        : "");
+    for (Series* s : {&time[k], &error[k], &rays[k]}) {
+      s->lines = true;
+      s->color = plot_palette_color(k);
+      s->marker = 0;
+      s->x.push_back(r.depth);
+    }
+    time[k].name = "OpenCL kernel, " + label;
+    time[k].y.push_back(r.bench.kernel.median);
+    time[k].y_lo.push_back(r.bench.kernel.min);
+    time[k].y_hi.push_back(r.bench.kernel.max);
+    error[k].name = "RMSE vs reference, " + label;
+    error[k].y.push_back(r.error.rmse_8bit);
+    rays[k].name = "rays traced, " + label;
+    rays[k].y.push_back(r.bench.rays.total() * 1e-6);
     if (!ref_seen[r.depth]) {
       ref_seen[r.depth] = true;
       ref.x.push_back(r.depth);
       ref.y.push_back(r.reference_ms);
     }
   }
-  ref.lines = true;
-  std::vector<Series> ts, rs;
-  for (auto& kv : time) ts.push_back(kv.second);
-  ts.push_back(ref);
-  for (auto& kv : rays) rs.push_back(kv.second);
+  time.push_back(ref);
   PlotOptions po;
-  po.x_from_zero = true;
-  po.y_from_zero = true;
-  write_plot(path, title + ": time per depth", "recursion depth", "ms", ts, po);
+  po.x_from_zero = po.y_from_zero = po.integer_x = true;
+  po.height = 480;
+  std::vector<PlotPanel> panels{
+      {title + ": time per depth", "recursion depth", "ms (median; bar: min-max)", time, po},
+      {title + ": error per depth", "recursion depth", "RMSE vs reference (8-bit levels)", error, po}};
+  if (rays_panel) *rays_panel = {{title + ": rays per depth", "recursion depth", "million rays", rays, po}};
+  return panels;
+}
+
+std::string plot_sweep(const std::vector<SweepRow>& rows, const std::string& path, const std::string& title) {
+  std::vector<PlotPanel> rays;
+  write_plot(path, sweep_plot_panels(rows, title, &rays));
   const std::string rays_path = rays_plot_path(path);
-  write_plot(rays_path, title + ": rays per depth", "recursion depth", "million rays", rs, po);
+  write_plot(rays_path, rays);
   return rays_path;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "eval/sweep.hpp"
+#include "image/plot.hpp"
 
 namespace clrt {
 
@@ -18,9 +19,13 @@ std::string sweep_csv(const std::vector<SweepRow>& rows);
 // the same figures, with "error" and "change" as compare's metric objects.
 nlohmann::ordered_json sweep_json(const std::vector<SweepRow>& rows, const std::string& scene);
 void print_sweep(const std::vector<SweepRow>& rows);
-// Time per depth to `path`; rays per depth to the same name with "-rays"
-// before the extension. Returns the second path.
+// Time per depth (median, min-max bars, and the reference) above the error
+// per depth (RMSE vs reference) to `path`; rays per depth to the same name
+// with "-rays" before the extension. Returns the second path. One series per
+// device, by index and P:D (equal names stay apart, labelled "name [P:D]").
 std::string rays_plot_path(const std::string& path);  // "a/t.png" -> "a/t-rays.png"
+std::vector<PlotPanel> sweep_plot_panels(const std::vector<SweepRow>& rows, const std::string& title,
+                                         std::vector<PlotPanel>* rays_panel = nullptr);
 std::string plot_sweep(const std::vector<SweepRow>& rows, const std::string& path, const std::string& title);
 
 }  // namespace clrt

@@ -7,6 +7,7 @@
 #include "cl/program_cache.hpp"
 #include "util/error.hpp"
 #include "util/log.hpp"
+#include "util/progress.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -40,6 +41,8 @@ cl::Program build_from_source(const cl::Context& ctx, const DeviceInfo& dev, con
                               const std::string& options) {
   cl::Program program(ctx, source);
   try {
+    // A cold build takes seconds on some drivers: a line counting them, on a terminal.
+    SlowStep note("building kernel for " + dev.name);
     program.build({dev.device}, options.c_str());
   } catch (const cl::Error& e) {
     std::string log;

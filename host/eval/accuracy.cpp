@@ -49,12 +49,20 @@ std::string AccuracyRow::time_source() const {
 std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes, const DeviceInfo& dev,
                                           const AccuracySettings& s) {
   std::vector<AccuracyRow> rows;
+  const int variants = int(s.variants.size());
+  const int total = int(scenes.size()) * (1 + variants + s.repeat * variants);
+  int done = 0;
+  const auto step = [&](const std::string& what) {
+    if (s.progress) s.progress(done++, total, what);
+  };
   for (const auto& ns : scenes) {
     const int depth = s.depth >= 0 ? s.depth : ns.scene.recursion_depth;
+    step(ns.name + ": reference");
     const Image ref = render_reference(ns.scene, s.width, s.height, depth, Sampling(s.spp, s.adaptive));
     const size_t first = rows.size();
     std::vector<std::unique_ptr<Renderer>> cls;  // per row; null = unsupported
     for (const AccuracyVariant& v : s.variants) {
+      step(ns.name + ": " + v.name());
       AccuracyRow row;
       row.scene = ns.name;
       row.variant = v.name();
@@ -81,6 +89,7 @@ std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes,
     // on a shared machine falls on all of them alike.
     for (int i = 0; i < s.repeat; ++i)
       for (size_t k = 0; k < cls.size(); ++k) {
+        step(ns.name + ": run " + std::to_string(i + 1) + " of " + rows[first + k].variant);
         if (!cls[k]) continue;
         (void)cls[k]->render();
         const FrameStats& t = cls[k]->stats();
@@ -90,6 +99,7 @@ std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes,
       }
     for (size_t k = first; k < rows.size(); ++k) rows[k].median_ms = median(rows[k].kernel_ms);
   }
+  if (s.progress) s.progress(total, total, "done");
   return rows;
 }
 

@@ -13,6 +13,7 @@
 #include "render/precision.hpp"
 #include "scene/sampling.hpp"
 #include "scene/scene.hpp"
+#include "util/progress.hpp"
 
 namespace clrt {
 
@@ -36,6 +37,9 @@ struct AccuracySettings {
   int repeat = 7;        // timed launches per variant (after one warm-up launch)
   KernelConfig base;     // precision is overwritten per variant
   std::vector<AccuracyVariant> variants = default_accuracy_variants();
+  // Per scene: its reference, each variant's build and warm-up, each timed
+  // run; and once with done == total at the end. Empty: none.
+  ProgressFn progress{};
 };
 
 struct AccuracyRow {

@@ -82,6 +82,13 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
     r.tracers_not_run = "they trace spheres only (the scene has planes or triangles)";
   const bool tracers = r.tracers_not_run.empty();
   const int build_repeat = std::min(r.repeat, kMaxBuildRepeat);
+  const bool warm_builds = s.builds && settings.kernel.use_cache;
+  const int total = (s.builds ? build_repeat : 0) + (warm_builds ? build_repeat + 1 : 0) + 1 + r.repeat + 1 +
+                    (s.peak ? 1 : 0) + (s.reference ? 1 : 0);
+  int done = 0;
+  const auto step = [&](const std::string& what) {
+    if (s.progress) s.progress(done++, total, what);
+  };
 
   std::vector<double> cold, warm, uploads;
   if (s.builds) {
@@ -90,6 +97,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
     RenderSettings no_cache = settings;
     no_cache.kernel.use_cache = false;
     for (int i = 0; i < build_repeat; ++i) {
+      step("cold build " + std::to_string(i + 1) + " of " + std::to_string(build_repeat));
       Renderer c(devs, no_cache);
       c.prepare(scene, s.width, s.height, s.depth, s.sampling());
       cold.push_back(c.stats().build_ms);
@@ -98,6 +106,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
     if (settings.kernel.use_cache) {
       r.build_warm_cached = true;
       for (int i = 0; i <= build_repeat; ++i) {
+        step("cached build " + std::to_string(i + 1) + " of " + std::to_string(build_repeat + 1));
         Renderer c(devs, settings);
         c.prepare(scene, s.width, s.height, s.depth, s.sampling());
         if (i == 0) continue;  // the one that stores the entry
@@ -109,6 +118,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   }
 
   // End to end on a fresh renderer: (warm) build + upload + first frame.
+  step("first frame and warm-ups");
   const auto t0 = Clock::now();
   Renderer cl(devs, settings);
   cl.prepare(scene, s.width, s.height, s.depth, s.sampling());
@@ -152,6 +162,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   if (s.embree && tracers) r.embree_threads = embree_frame();
   std::vector<double> frames, downloads, omp_ms, frame_ratio, kernel_ratio, embree_ms, embree_build, embree_ratio;
   for (int i = 0; i < r.repeat; ++i) {
+    step("round " + std::to_string(i + 1) + " of " + std::to_string(r.repeat));
     cl.render_into(r.image);  // like the OpenMP tracer's, the image's memory is reused
     const FrameStats& frame = cl.stats();
     r.kernel_ms.push_back(frame.kernel_ms);
@@ -191,6 +202,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   r.speedup_vs_embree = summarize(embree_ratio);
 
   // Rays: a separate build with per-pixel counters (they cost time).
+  step("counting rays");
   RenderSettings counting = settings;
   counting.kernel.count_rays = true;
   Renderer rc(devs, counting);
@@ -204,6 +216,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   if (r.rays.sphere_tests) r.ns_per_sphere_test = r.kernel.median * 1e6 / r.rays.sphere_tests;
 
   if (s.peak) {
+    step("peak multiply-adds");
     bool all = true;
     for (const auto& d : devs) {
       r.peaks.push_back(measure_peak_flops(d));
@@ -214,11 +227,13 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   }
 
   if (s.reference) {
+    step("reference (scalar double)");
     const auto t2 = Clock::now();
     r.reference_image = render_reference(scene, s.width, s.height, s.depth, s.sampling());
     r.reference = summarize({ms_since(t2)});
     if (r.frame.median > 0) r.speedup_vs_reference = r.reference.median / r.frame.median;
   }
+  if (s.progress) s.progress(total, total, "done");
   return r;
 }
 

@@ -23,6 +23,7 @@
 #include "render/renderer.hpp"
 #include "scene/sampling.hpp"
 #include "scene/scene.hpp"
+#include "util/progress.hpp"
 #include "util/stats.hpp"
 
 namespace clrt {
@@ -38,6 +39,9 @@ struct BenchSettings {
   bool embree = true;     // time the Embree tracer (and check its image against the OpenMP tracer's; not when spp > 1)
   bool builds = true;     // measure cold (no cache) and warm (cache hit) builds
   bool peak = true;       // measure the device's multiply-add peak
+  // Each build, the first frame, each timed round, the ray count, the peak
+  // and the reference; once with done == total at the end. Empty: none.
+  ProgressFn progress{};
 
   Sampling sampling() const { return Sampling(spp, adaptive, subsample); }
 };

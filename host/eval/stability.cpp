@@ -430,10 +430,18 @@ SamplingConvergence sampling_change(const Image& supersampled, const Image& sing
 }
 
 StabilityRun run_stability(const std::vector<StabilityCase>& cases, const std::vector<Precision>& variants, int width,
-                           int height, const DeviceInfo& dev, const KernelConfig& base) {
+                           int height, const DeviceInfo& dev, const KernelConfig& base, const ProgressFn& progress) {
   StabilityRun run;
+  const int total = int(cases.size() * (1 + variants.size()));
+  int done = 0;
+  const auto step = [&](const std::string& what) {
+    if (progress) progress(done++, total, what);
+  };
   std::vector<Image> refs;
-  for (const auto& c : cases) refs.push_back(render_reference(c.scene, width, height, c.depth, c.sampling));
+  for (const auto& c : cases) {
+    step("reference " + c.name());
+    refs.push_back(render_reference(c.scene, width, height, c.depth, c.sampling));
+  }
   for (size_t i = 0; i < cases.size(); ++i) {
     const auto& c = cases[i];
     if (c.baseline.empty()) continue;
@@ -457,6 +465,7 @@ StabilityRun run_stability(const std::vector<StabilityCase>& cases, const std::v
     std::unique_ptr<Renderer> cl;
     if (supported) cl = std::make_unique<Renderer>(std::vector<DeviceInfo>{dev}, settings);
     for (size_t i = 0; i < cases.size(); ++i) {
+      step(precision_name(p) + " " + cases[i].name());
       StabilityResult r;
       r.case_index = i;
       r.variant = p;
@@ -470,6 +479,7 @@ StabilityRun run_stability(const std::vector<StabilityCase>& cases, const std::v
       run.results.push_back(r);
     }
   }
+  if (progress) progress(total, total, "done");
   return run;
 }
 

@@ -13,6 +13,7 @@
 #include "render/precision.hpp"
 #include "scene/sampling.hpp"
 #include "scene/scene.hpp"
+#include "util/progress.hpp"
 
 namespace clrt {
 
@@ -80,8 +81,10 @@ struct StabilityRun {
 // Runs each case on each variant (generic, unspecialized kernels: one build
 // per variant for the whole suite) at width x height on one device, and
 // measures each supersampled case's reference against its baseline's.
+// `progress` (optional): the references, then each case of each variant.
 StabilityRun run_stability(const std::vector<StabilityCase>& cases, const std::vector<Precision>& variants, int width,
-                           int height, const DeviceInfo& device, const KernelConfig& base);
+                           int height, const DeviceInfo& device, const KernelConfig& base,
+                           const ProgressFn& progress = {});
 
 // Reference(N x N) against reference(1) for one supersampled case (exposed
 // for the tests: the measure behind SamplingConvergence).

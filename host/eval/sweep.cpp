@@ -30,6 +30,8 @@ std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<DeviceInfo
       b.peak = false;  // a property of the device, not of the depth: `clrt bench` measures it
       SweepRow row;
       row.device = devices[k].name;
+      row.device_index = devices[k].index;
+      row.device_pd = std::to_string(devices[k].platform_index) + ":" + std::to_string(devices[k].device_index);
       row.depth = d;
       row.bench = run_bench(scene, {devices[k]}, settings, b);
       row.reference_ms = ref_ms;

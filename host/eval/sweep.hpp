@@ -13,6 +13,8 @@ namespace clrt {
 
 struct SweepRow {
   std::string device;
+  int device_index = 0;   // DeviceInfo::index: tells devices with equal names apart
+  std::string device_pd;  // "P:D", platform and device position (as --device takes it)
   int depth = 0;
   BenchResult bench;                // without the reference (timed once per depth, below); images dropped after use
   Comparison error;                 // OpenCL vs reference at this depth

@@ -1,299 +1,366 @@
-// plot.cpp - charts: the layout here, the drawing with OpenImageIO's
-// ImageBufAlgo in the imaging module (image_io.hpp; see plot.hpp).
+// plot.cpp - charts with PLplot's C API and its cairo devices (pngcairo,
+// svgcairo, pdfcairo; Debian's plplot-driver-cairo). PLplot keeps global
+// state, so one chart is drawn at a time (a mutex), on a stream of its own.
 #include "image/plot.hpp"
+
+#include <plplot.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
+#include <cstring>
+#include <functional>
 #include <limits>
-#include <memory>
+#include <mutex>
 #include <stdexcept>
 
-#include "image/image_file.hpp"
-#include "image/image_io.hpp"
-#include "util/log.hpp"
+#include "util/error.hpp"
+#include "util/output_file.hpp"
 
 namespace clrt {
 
 namespace {
 
-using imageio::AlignX;
-using imageio::AlignY;
-using imageio::Canvas;
-using Rgb = imageio::Rgb;
-const Rgb kBlack{0, 0, 0}, kGrid{0.88f, 0.88f, 0.88f}, kWhite{1, 1, 1}, kAxis{0.25f, 0.25f, 0.25f};
-// A colour-blind-friendly palette (Okabe-Ito), then greys.
-const Rgb kPalette[] = {{0.00f, 0.45f, 0.70f}, {0.84f, 0.37f, 0.00f}, {0.00f, 0.62f, 0.45f}, {0.80f, 0.47f, 0.65f},
-                        {0.90f, 0.62f, 0.00f}, {0.34f, 0.71f, 0.91f}, {0.94f, 0.89f, 0.26f}, {0.40f, 0.40f, 0.40f}};
-
-// The font: DejaVu Sans (Debian's fonts-dejavu-core), else OpenImageIO's
-// default search; "" with ok=false when neither is found.
-struct Font {
-  std::string name;
-  bool ok = false;
-};
-const Font& font() {
-  static const Font f = [] {
-    for (const char* name : {"DejaVuSans", "DejaVu Sans", ""})
-      if (imageio::module().text_size("0", 12, name).defined) return Font{name, true};
-    log_message(LogLevel::Warning, "no font found for plot text (install fonts-dejavu-core); drawing without text");
-    return Font{"", false};
-  }();
-  return f;
-}
-
-void text(Canvas& img, int x, int y, const std::string& s, int size, const Rgb& color, AlignX ax = AlignX::Left,
-          AlignY ay = AlignY::Baseline) {
-  if (s.empty() || !font().ok) return;
-  img.text(x, y, s, size, font().name, color, ax, ay);
-}
-
-int text_width(const std::string& s, int size) {
-  if (s.empty() || !font().ok) return 0;
-  const imageio::TextBox r = imageio::module().text_size(s, size, font().name);
-  return r.defined ? r.width : 0;
-}
-
-// Text rotated 90 degrees counter-clockwise, centred on (cx, cy).
-void vertical_text(Canvas& img, int cx, int cy, const std::string& s, int size, const Rgb& color) {
-  if (s.empty() || !font().ok) return;
-  img.vertical_text(cx, cy, s, size, font().name, color);
-}
-
-std::string tick_label(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  std::string s = buf;
-  for (const char* from : {"e+0", "e+", "e-0"}) {
-    auto p = s.find(from);
-    if (p != std::string::npos) {
-      s.replace(p, std::string(from).size(), from[1] == '-' ? "e-" : "e");
-      break;
-    }
-  }
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
   return s;
 }
 
-// One axis: data range and the mapping to pixels.
+// The extension of the file name in `path`, lower case, "" if none.
+std::string plot_extension(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const size_t dot = name.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? "" : lower(name.substr(dot + 1));
+}
+
+// The PLplot device that writes `ext`.
+std::string plot_device(const std::string& ext) {
+  return ext + "cairo";
+}
+
+// Whether PLplot lists `device` among its file devices (the cairo driver is
+// a package of its own, plplot-driver-cairo).
+bool device_available(const std::string& device) {
+  static std::mutex m;
+  std::lock_guard<std::mutex> lock(m);
+  std::vector<const char*> menu_v(128), names_v(128);
+  const char** menu = menu_v.data();
+  const char** names = names_v.data();
+  int n = int(names_v.size());
+  plgFileDevs(&menu, &names, &n);
+  for (int i = 0; i < n; ++i)
+    if (names[i] && device == names[i]) return true;
+  return false;
+}
+
+// PLplot calls exit() after a fatal error; this handler makes that one
+// `clrt: error:` line with status 2 (README "Exit status").
+int plot_exit_handler(const char* message) {
+  std::fprintf(stderr, "clrt: error: plot: %s\n", message && *message ? message : "PLplot failed");
+  return kExitBadInput;
+}
+
 struct Axis {
   bool log = false;
-  double lo = 0, hi = 1;  // in data units
+  double lo = 0, hi = 1;  // window, in transformed units (log10 on a log axis)
   double tr(double v) const { return log ? std::log10(v) : v; }
   bool usable(double v) const { return std::isfinite(v) && (!log || v > 0); }
-  // Fraction of the axis, 0 at lo, 1 at hi.
-  double frac(double v) const { return (tr(v) - tr(lo)) / (tr(hi) - tr(lo)); }
 };
 
-Axis make_axis(const std::vector<Series>& series, bool use_x, bool log, bool from_zero) {
+Axis make_axis(const std::vector<Series>& series, bool use_x, bool log, bool from_zero, bool integer) {
   Axis a;
   a.log = log;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  auto take = [&](double v) {
+    if (!a.usable(v)) return;
+    lo = std::min(lo, a.tr(v));
+    hi = std::max(hi, a.tr(v));
+  };
   for (const auto& s : series)
     for (size_t i = 0; i < s.x.size(); ++i) {
-      double v = use_x ? s.x[i] : s.y[i];
-      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || !a.usable(v)) continue;
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      if (use_x) {
+        take(s.x[i]);
+        if (!s.x_lo.empty()) take(s.x_lo[i]), take(s.x_hi[i]);
+      } else {
+        take(s.y[i]);
+        if (!s.y_lo.empty()) take(s.y_lo[i]), take(s.y_hi[i]);
+      }
     }
-  if (!(lo <= hi)) lo = log ? 1 : 0, hi = log ? 10 : 1;  // no data
+  if (!(lo <= hi)) lo = 0, hi = 1;  // no data
   if (!log && from_zero) lo = std::min(lo, 0.0), hi = std::max(hi, 0.0);
-  double tlo = a.tr(lo), thi = a.tr(hi);
-  if (thi - tlo < 1e-12 * std::max(1.0, std::fabs(thi))) {
-    double w = log ? 0.5 : std::max(1e-12, std::fabs(thi) * 0.1 + (thi == 0 ? 1 : 0));
-    tlo -= w, thi += w;
+  if (hi - lo < 1e-12 * std::max(1.0, std::fabs(hi))) {
+    const double w = log ? 0.5 : std::max(1e-12, std::fabs(hi) * 0.1 + (hi == 0 ? 1 : 0));
+    lo = !log && from_zero && lo == 0 ? 0 : lo - w;  // all zero: [0, 1], not [-1, 1]
+    hi += w;
   }
-  double pad = 0.06 * (thi - tlo);
-  bool keep_zero = !log && from_zero && lo == 0;
-  tlo = keep_zero ? tlo : tlo - pad;
-  thi += pad;
-  a.lo = log ? std::pow(10.0, tlo) : tlo;
-  a.hi = log ? std::pow(10.0, thi) : thi;
+  if (integer && !log) {  // whole numbers with half a step of room: ticks stay on them
+    a.lo = std::floor(lo) - 0.5;
+    a.hi = std::ceil(hi) + 0.5;
+    return a;
+  }
+  const double pad = 0.06 * (hi - lo);
+  a.lo = lo - pad;  // (a zero line stays off the frame)
+  a.hi = hi + pad;
   return a;
 }
 
-void marker(Canvas& img, int x, int y, int shape, const Rgb& c) {
-  const int h = 4;
-  switch (shape % 6) {
-    case 0:
-      img.box(x - h, y - h, x + h, y + h, c, true);
-      break;
-    case 1:
-      img.box(x - h, y - h, x + h, y + h, c, false);
-      img.box(x - h + 1, y - h + 1, x + h - 1, y + h - 1, c, false);
-      break;
-    case 2:
-      for (int d = -1; d <= 1; ++d) {
-        img.line(x - h - 1, y + d, x + h + 1, y + d, c);
-        img.line(x + d, y - h - 1, x + d, y + h + 1, c);
+// The tick step for whole-number ticks over [lo, hi]: 1, 2, 5, 10, ...
+double integer_step(double lo, double hi) {
+  const double raw = (hi - lo) / 10;
+  if (raw <= 1) return 1;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  const double norm = raw / mag;
+  return std::max(1.0, (norm <= 1 ? 1 : norm <= 2 ? 2 : norm <= 5 ? 5 : 10) * mag);
+}
+
+PLINT to255(float c) {
+  return PLINT(std::lround(std::clamp(c, 0.f, 1.f) * 255));
+}
+
+// cmap0 indices: 0 background, 1 axes and text, 2 grid, then one per series.
+// Character height in PLplot's millimetres: the same on every page size.
+constexpr double kCharMm = 4.2;
+constexpr PLINT kBackground = 0, kInk = 1, kGrid = 2, kFirstSeries = 3;
+
+struct Layout {
+  double left, right, bottom, top;  // the data area, normalised page coordinates
+};
+
+// `s` cut to `n` characters (UTF-8 sequences kept whole), "..." marking a cut.
+std::string shorten(const std::string& s, size_t n) {
+  if (s.size() <= n || n < 4) return s;
+  size_t end = n - 3;
+  while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0) == 0x80) --end;
+  return s.substr(0, end) + "...";
+}
+
+void draw_panel(const PlotPanel& p, PLINT first_color, const Layout& box, double text_scale, size_t legend_chars) {
+  const PlotOptions& o = p.options;
+  const Axis ax = make_axis(p.series, true, o.log_x, o.x_from_zero, o.integer_x);
+  const Axis ay = make_axis(p.series, false, o.log_y, o.y_from_zero, false);
+  plschr(kCharMm, text_scale);
+  plvpor(box.left, box.right, box.bottom, box.top);
+  plwind(ax.lo, ax.hi, ay.lo, ay.hi);
+  const double xtick = o.integer_x && !o.log_x ? integer_step(ax.lo, ax.hi) : 0;
+  const PLINT nxsub = o.integer_x && !o.log_x ? 1 : 0;
+  const std::string xl = o.log_x ? "l" : "", yl = o.log_y ? "l" : "";
+  // Grid first (light, under the data), then the frame, ticks and numbers.
+  plcol0(kGrid);
+  plwidth(1);
+  plbox(("g" + xl).c_str(), xtick, nxsub, ("g" + yl).c_str(), 0, 0);
+  plcol0(kInk);
+  plbox(("bcnst" + xl).c_str(), xtick, nxsub, ("bcnstv" + yl).c_str(), 0, 0);
+  plmtex("b", 2.8, 0.5, 0.5, p.xlabel.c_str());
+  plmtex("l", 4.2, 0.5, 0.5, p.ylabel.c_str());
+  plschr(kCharMm, text_scale * 1.15);
+  plmtex("t", 1.2, 0.0, 0.0, p.title.c_str());
+  plschr(kCharMm, text_scale);
+
+  std::vector<PLINT> opt, text_col, line_col, line_style, sym_col, sym_num;
+  std::vector<PLFLT> line_width, sym_scale;
+  std::vector<std::string> texts, symbols;
+  const double label_dx = 0.012 * (ax.hi - ax.lo);
+  for (size_t k = 0; k < p.series.size(); ++k) {
+    const Series& s = p.series[k];
+    const PLINT color = first_color + PLINT(k);
+    const char* glyph = plot_marker(s.marker >= 0 ? size_t(s.marker) : k);
+    std::vector<PLFLT> x, y, lo, hi, xlo, xhi;
+    std::vector<size_t> at;
+    for (size_t i = 0; i < s.x.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || !ax.usable(s.x[i]) || !ay.usable(s.y[i])) continue;
+      x.push_back(ax.tr(s.x[i]));
+      y.push_back(ay.tr(s.y[i]));
+      if (!s.y_lo.empty()) {
+        lo.push_back(ay.usable(s.y_lo[i]) ? ay.tr(s.y_lo[i]) : y.back());
+        hi.push_back(ay.usable(s.y_hi[i]) ? ay.tr(s.y_hi[i]) : y.back());
       }
-      break;
-    case 3:
-      for (int d = 0; d <= 1; ++d) {
-        img.line(x - h + d, y - h, x + h + d, y + h, c);
-        img.line(x - h + d, y + h, x + h + d, y - h, c);
+      if (!s.x_lo.empty()) {
+        xlo.push_back(ax.usable(s.x_lo[i]) ? ax.tr(s.x_lo[i]) : x.back());
+        xhi.push_back(ax.usable(s.x_hi[i]) ? ax.tr(s.x_hi[i]) : x.back());
       }
-      break;
-    case 4:  // filled diamond
-      for (int d = -h - 1; d <= h + 1; ++d) {
-        int w = h + 1 - std::abs(d);
-        img.line(x - w, y + d, x + w, y + d, c);
+      at.push_back(i);
+    }
+    plcol0(color);
+    if (!x.empty()) {
+      if (!lo.empty()) {
+        plwidth(1.5);
+        plerry(PLINT(x.size()), x.data(), lo.data(), hi.data());
       }
-      break;
-    default:  // hollow triangle
-      for (int d = 0; d <= 1; ++d) {
-        img.line(x - h - 1, y + h - d, x + h + 1, y + h - d, c);
-        img.line(x - h - 1 + d, y + h, x + d, y - h - 1, c);
-        img.line(x + h + 1 - d, y + h, x - d, y - h - 1, c);
+      if (!xlo.empty()) {
+        plwidth(1.5);
+        plerrx(PLINT(x.size()), xlo.data(), xhi.data(), y.data());
       }
+      if (s.lines && x.size() > 1) {
+        plwidth(2);
+        plline(PLINT(x.size()), x.data(), y.data());
+      }
+      if (s.markers) plstring(PLINT(x.size()), x.data(), y.data(), glyph);
+      plcol0(kInk);
+      plschr(kCharMm, text_scale * 0.8);
+      for (size_t j = 0; j < at.size(); ++j)
+        if (at[j] < s.labels.size() && !s.labels[at[j]].empty())
+          plptex(x[j] + label_dx, y[j], ax.hi - ax.lo, ay.hi - ay.lo, 0, s.labels[at[j]].c_str());
+      plschr(kCharMm, text_scale);
+    }
+    if (s.name.empty() || !o.legend) continue;
+    opt.push_back((s.lines ? PL_LEGEND_LINE : 0) | (s.markers ? PL_LEGEND_SYMBOL : 0));
+    if (opt.back() == 0) opt.back() = PL_LEGEND_LINE;
+    texts.push_back(shorten(s.name, legend_chars));
+    text_col.push_back(kInk);
+    line_col.push_back(color);
+    line_style.push_back(1);
+    line_width.push_back(2);
+    sym_col.push_back(color);
+    sym_scale.push_back(1);
+    sym_num.push_back(1);
+    symbols.push_back(glyph);
   }
+  plwidth(1);
+  if (texts.empty()) return;
+  std::vector<const char*> tp, sp;
+  for (auto& t : texts) tp.push_back(t.c_str());
+  for (auto& t : symbols) sp.push_back(t.c_str());
+  std::vector<PLINT> none(texts.size(), 0);
+  std::vector<PLFLT> nonef(texts.size(), 0);
+  PLFLT w = 0, h = 0;
+  pllegend(&w, &h, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX,
+           PL_POSITION_RIGHT | PL_POSITION_OUTSIDE | PL_POSITION_VIEWPORT, 0.02, 0.0, 0.05, kBackground, kInk, 1, 0, 1,
+           PLINT(texts.size()), opt.data(), 0.8, 0.75, 2.0, 0.0, text_col.data(), tp.data(), none.data(), none.data(),
+           nonef.data(), nonef.data(), line_col.data(), line_style.data(), line_width.data(), sym_col.data(),
+           sym_scale.data(), sym_num.data(), sp.data());
 }
 
 }  // namespace
 
-std::vector<double> plot_ticks(double lo, double hi, bool log_scale) {
-  std::vector<double> out;
-  if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi)) return out;
-  if (log_scale && lo > 0) {
-    const double decades = std::log10(hi / lo);
-    const int e0 = int(std::floor(std::log10(lo))), e1 = int(std::ceil(std::log10(hi)));
-    const int every = std::max(1, int(std::ceil(decades / 8)));
-    const double tol = 1e-9;
-    for (int e = e0; e <= e1; ++e) {
-      if (every > 1 && (e - e0) % every) continue;
-      for (double m : {1.0, 2.0, 5.0}) {
-        if (m != 1.0 && decades > 2.5) continue;
-        double v = m * std::pow(10.0, e);
-        if (v >= lo * (1 - tol) && v <= hi * (1 + tol)) out.push_back(v);
-      }
-    }
-    if (out.size() >= 2) return out;
-    out.clear();  // less than a decade: fall back to linear ticks
-  }
-  const double raw = (hi - lo) / 6;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  const double norm = raw / mag;
-  const double step = (norm < 1.5 ? 1 : norm < 3.5 ? 2 : norm < 7.5 ? 5 : 10) * mag;
-  for (double v = std::ceil(lo / step) * step; v <= hi + step * 1e-9; v += step)
-    out.push_back(std::fabs(v) < step * 1e-9 ? 0.0 : v);
-  return out;
+const std::vector<std::string>& plot_extensions() {
+  static const std::vector<std::string> v{"png", "svg", "pdf"};
+  return v;
+}
+
+void check_plot_output(const std::string& path) {
+  const OutputTarget target = check_output(path, "plot");
+  const std::string ext = plot_extension(target.kind == OutputKind::File ? path : target.path);
+  const auto& known = plot_extensions();
+  if (std::find(known.begin(), known.end(), ext) == known.end())
+    throw UserError("plot " + path + ": unknown format" + (ext.empty() ? "" : " '." + ext + "'") +
+                    " (the extension picks it: .png, .svg or .pdf)");
+  if (!device_available(plot_device(ext)))
+    throw UserError("plot " + path + ": PLplot has no " + plot_device(ext) +
+                    " device (install Debian's plplot-driver-cairo)");
+}
+
+PlotColor plot_palette_color(size_t i) {
+  // Okabe-Ito (colour-blind friendly) without its yellow, then darker tones and greys.
+  static const PlotColor kPalette[] = {{0.00f, 0.45f, 0.70f}, {0.84f, 0.37f, 0.00f}, {0.00f, 0.62f, 0.45f},
+                                       {0.80f, 0.47f, 0.65f}, {0.90f, 0.62f, 0.00f}, {0.34f, 0.71f, 0.91f},
+                                       {0.55f, 0.16f, 0.16f}, {0.40f, 0.40f, 0.40f}, {0.45f, 0.30f, 0.65f},
+                                       {0.35f, 0.50f, 0.10f}, {0.10f, 0.10f, 0.10f}, {0.65f, 0.65f, 0.65f}};
+  return kPalette[i % (sizeof kPalette / sizeof kPalette[0])];
+}
+
+PlotColor plot_color_for_name(const std::string& name) {
+  // Fixed entries: the accuracy variants (render/precision, eval/accuracy),
+  // then the series of the sweep and scaling charts.
+  static const std::pair<const char*, size_t> kNamed[] = {{"naive", 1},
+                                                          {"stable", 4},
+                                                          {"robust", 0},
+                                                          {"fast", 3},
+                                                          {"fp64", 2},
+                                                          {"robust+subsample-shade", 5},
+                                                          {"robust+subsample-interpolate", 8},
+                                                          {"reference", 10},
+                                                          {"clrt", 0},
+                                                          {"Embree", 1},
+                                                          {"OpenMP", 2}};
+  for (const auto& kv : kNamed)
+    if (name == kv.first) return plot_palette_color(kv.second);
+  // FNV-1a: the same on every platform and run (std::hash need not be).
+  uint32_t h = 2166136261u;
+  for (unsigned char c : name) h = (h ^ c) * 16777619u;
+  return plot_palette_color(h % 12);
+}
+
+const char* plot_marker(size_t i) {
+  static const char* const kMarkers[] = {"●", "■", "▲", "◆", "▼", "✚", "✖", "★"};
+  return kMarkers[i % plot_marker_count()];
+}
+
+size_t plot_marker_count() {
+  return 8;
 }
 
 void write_plot(const std::string& path, const std::string& title, const std::string& xlabel, const std::string& ylabel,
-                const std::vector<Series>& series, const PlotOptions& opt) {
-  for (const auto& s : series)
-    if (s.x.size() != s.y.size())
-      throw std::invalid_argument("write_plot: series \"" + s.name + "\": x/y sizes differ");
-  const int W = std::max(200, opt.width), H = std::max(150, opt.height), fs = std::max(8, opt.font_size);
-  const Axis ax = make_axis(series, true, opt.log_x, opt.x_from_zero);
-  const Axis ay = make_axis(series, false, opt.log_y, opt.y_from_zero);
-  const std::vector<double> xt = plot_ticks(ax.lo, ax.hi, ax.log), yt = plot_ticks(ay.lo, ay.hi, ay.log);
+                const std::vector<Series>& series, const PlotOptions& options) {
+  write_plot(path, {PlotPanel{title, xlabel, ylabel, series, options}});
+}
 
-  // Plot area: room on the left for the y tick labels and the rotated label.
-  int ytw = 0;
-  for (double v : yt) ytw = std::max(ytw, text_width(tick_label(v), fs));
-  const int left = 20 + (ylabel.empty() ? 0 : fs + 10) + ytw + 8, right = W - 24;
-  const int top = title.empty() ? 20 : 2 * fs + 16, bottom = H - (xlabel.empty() ? 2 * fs : 3 * fs + 16);
-  auto px = [&](double v) { return left + int(std::lround(ax.frac(v) * (right - left))); };
-  auto py = [&](double v) { return bottom - int(std::lround(ay.frac(v) * (bottom - top))); };
-
-  const std::unique_ptr<Canvas> canvas = imageio::module().canvas(W, H, kWhite);
-  Canvas& img = *canvas;
-  // Grid and ticks.
-  for (double v : xt) {
-    int x = px(v);
-    img.line(x, top, x, bottom, kGrid);
-    img.line(x, bottom, x, bottom + 5, kAxis);
-    text(img, x, bottom + 8, tick_label(v), fs, kBlack, AlignX::Center, AlignY::Top);
-  }
-  for (double v : yt) {
-    int y = py(v);
-    img.line(left, y, right, y, kGrid);
-    img.line(left - 5, y, left, y, kAxis);
-    text(img, left - 8, y, tick_label(v), fs, kBlack, AlignX::Right, AlignY::Center);
-  }
-  img.box(left, top, right, bottom, kAxis, false);
-  text(img, W / 2, fs + 10, title, fs + 3, kBlack, AlignX::Center, AlignY::Center);
-  text(img, (left + right) / 2, H - 10, xlabel, fs, kBlack, AlignX::Center, AlignY::Bottom);
-  vertical_text(img, 12 + fs / 2, (top + bottom) / 2, ylabel, fs, kBlack);
-
-  // Series.
-  std::vector<Rgb> colors;
-  size_t next = 0;
-  for (const auto& s : series)
-    colors.push_back(s.color[0] >= 0 ? s.color : kPalette[next++ % (sizeof kPalette / sizeof kPalette[0])]);
-  std::vector<std::array<int, 4>> placed;  // label boxes drawn so far (x0, y0, x1, y1)
-  for (size_t k = 0; k < series.size(); ++k) {
-    const Series& s = series[k];
-    auto ok = [&](size_t i) { return ax.usable(s.x[i]) && ay.usable(s.y[i]); };
-    if (s.lines)
-      for (size_t i = 1; i < s.x.size(); ++i) {
-        if (!ok(i - 1) || !ok(i)) continue;
-        for (int d = 0; d <= 1; ++d)
-          img.line(px(s.x[i - 1]), py(s.y[i - 1]) + d, px(s.x[i]), py(s.y[i]) + d, colors[k]);
-      }
-    for (size_t i = 0; i < s.x.size(); ++i) {
-      if (!ok(i)) continue;
-      if (s.markers) marker(img, px(s.x[i]), py(s.y[i]), int(k), colors[k]);
-      if (i < s.labels.size() && !s.labels[i].empty()) {
-        // Right of the marker, or left of it when that would leave the plot;
-        // moved up or down when it would overlap a label already drawn.
-        const int w = text_width(s.labels[i], fs - 3), h = fs;
-        const bool flip = px(s.x[i]) + 10 + w > right - 2;
-        const int x0 = flip ? px(s.x[i]) - 10 - w : px(s.x[i]) + 10;
-        int base = py(s.y[i]) - 6;
-        for (int shift : {0, -h, h + 4, -2 * h, 2 * h + 4, -3 * h}) {
-          const int b = py(s.y[i]) - 6 + shift;
-          bool clash = b - h < top || b > bottom;
-          for (const auto& r : placed) clash |= x0 < r[2] && r[0] < x0 + w && b - h < r[3] && r[1] < b;
-          if (!clash) {
-            base = b;
-            break;
-          }
-        }
-        placed.push_back({x0, base - h, x0 + w, base});
-        text(img, x0, base, s.labels[i], fs - 3, colors[k]);
-      }
+void write_plot(const std::string& path, const std::vector<PlotPanel>& panels) {
+  for (const auto& p : panels)
+    for (const auto& s : p.series) {
+      if (s.x.size() != s.y.size())
+        throw std::invalid_argument("write_plot: series \"" + s.name + "\": x/y sizes differ");
+      if (s.y_lo.size() != s.y_hi.size() || (!s.y_lo.empty() && s.y_lo.size() != s.y.size()))
+        throw std::invalid_argument("write_plot: series \"" + s.name + "\": error bar sizes differ");
+      if (s.x_lo.size() != s.x_hi.size() || (!s.x_lo.empty() && s.x_lo.size() != s.x.size()))
+        throw std::invalid_argument("write_plot: series \"" + s.name + "\": error bar sizes differ");
     }
-  }
+  if (panels.empty()) throw std::invalid_argument("write_plot: no panel");
+  check_plot_output(path);
+  const std::string ext = plot_extension(path);
 
-  // Legend, top right inside the plot area.
-  if (opt.legend) {
-    int n = 0, tw = 0;
-    for (const auto& s : series)
-      if (!s.name.empty()) ++n, tw = std::max(tw, text_width(s.name, fs));
-    if (n > 0) {
-      const int row = fs + 8, bw = tw + 44, bh = n * row + 8;
-      // The corner of the plot area that covers the fewest points.
-      int x0 = right - bw - 8, y0 = top + 8;
-      size_t fewest = SIZE_MAX;
-      for (int corner = 0; corner < 4; ++corner) {
-        const int cx = corner % 2 ? left + 8 : right - bw - 8, cy = corner < 2 ? top + 8 : bottom - bh - 8;
-        size_t covered = 0;
-        for (const auto& s : series)
-          for (size_t i = 0; i < s.x.size(); ++i) {
-            if (!ax.usable(s.x[i]) || !ay.usable(s.y[i])) continue;
-            const int x = px(s.x[i]), y = py(s.y[i]);
-            covered += x >= cx - 12 && x <= cx + bw + 12 && y >= cy - 12 && y <= cy + bh + 12;
-          }
-        if (covered < fewest) fewest = covered, x0 = cx, y0 = cy;
+  // The page: the widest panel, the panels' heights added up.
+  int width = 0, height = 0;
+  for (const auto& p : panels) width = std::max(width, p.options.width), height += p.options.height;
+  // Room right of the data for the legend: its longest entry.
+  size_t longest = 0;
+  for (const auto& p : panels)
+    for (const auto& s : p.series)
+      if (p.options.legend) longest = std::max(longest, s.name.size());
+  const double text_scale = 0.85;
+  // The data area keeps 55% of the width at least; longer names are cut.
+  const double char_px = 8.5;  // a legend character (PNG pixels), about
+  const double right_px = longest ? 30 + 50 + char_px * double(longest) : 25;
+  const double right = std::max(0.55, 1 - right_px / width);
+  const size_t legend_chars = size_t(std::max(4.0, ((1 - right) * width - 80) / char_px));
+
+  ScratchFile scratch("plot." + ext);
+  {
+    static std::mutex m;
+    std::lock_guard<std::mutex> lock(m);
+    plsexit(plot_exit_handler);
+    PLINT stream = 0;
+    plmkstrm(&stream);
+    plsdev(plot_device(ext).c_str());
+    plsfnam(scratch.path().c_str());
+    plspage(0, 0, width, height, 0, 0);
+    size_t n_colors = kFirstSeries;
+    for (const auto& p : panels) n_colors += p.series.size();
+    plscmap0n(PLINT(n_colors));
+    plscol0(kBackground, 255, 255, 255);
+    plscol0(kInk, 0, 0, 0);
+    plscol0(kGrid, 222, 222, 222);
+    PLINT next = kFirstSeries;
+    for (const auto& p : panels)
+      for (size_t k = 0; k < p.series.size(); ++k) {
+        const PlotColor c = p.series[k].color[0] < 0 ? plot_palette_color(k) : p.series[k].color;
+        plscol0(next++, to255(c[0]), to255(c[1]), to255(c[2]));
       }
-      img.box(x0, y0, x0 + bw, y0 + bh, kWhite, true);
-      img.box(x0, y0, x0 + bw, y0 + bh, kAxis, false);
-      int r = 0;
-      for (size_t k = 0; k < series.size(); ++k) {
-        if (series[k].name.empty()) continue;
-        int y = y0 + 4 + r * row + row / 2;
-        if (series[k].lines) img.line(x0 + 6, y, x0 + 30, y, colors[k]);
-        marker(img, x0 + 18, y, int(k), colors[k]);
-        text(img, x0 + 38, y, series[k].name, fs, kBlack, AlignX::Left, AlignY::Center);
-        ++r;
-      }
+    plinit();
+    pladv(0);
+    double top = 1;
+    PLINT first = kFirstSeries;
+    for (const auto& p : panels) {
+      const double band = double(p.options.height) / height;
+      Layout box{85.0 / width, right, top - band + 62.0 / height, top - 38.0 / height};
+      draw_panel(p, first, box, text_scale, legend_chars);
+      first += PLINT(p.series.size());
+      top -= band;
     }
+    plend1();
   }
-
-  write_rgb8(img.rgb8(), W, H, path);
+  write_output(path, scratch.read(), "plot");
 }
 
 }  // namespace clrt

@@ -2,6 +2,7 @@
 #include "render/band_scheduler.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -32,8 +33,21 @@ bool BandQueue::take(int want, bool guided, int& y0, int& rows) {
 
 namespace {
 
+// Rows done over every worker, for the progress callback.
+struct RowProgress {
+  const ProgressFn& fn;
+  std::atomic<int> rows{0};
+  RowProgress(const ProgressFn& f, int height) : fn(f) {
+    if (fn) fn(0, height, "rows");
+  }
+  void add(int n, int height) {
+    const int done = rows += n;
+    if (fn) fn(done, height, "rows");
+  }
+};
+
 void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolicy& policy, int n_workers,
-                DeviceShare& share) {
+                DeviceShare& share, RowProgress& progress) {
   const int W = img.width, H = img.height;
   const double limit = launch_limit_ms(policy, r.device().type);
   // Largest band the device can hold (float RGB output is the largest buffer).
@@ -65,6 +79,7 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
     share.max_launch_ms = std::max(share.max_launch_ms, ms);
     share.tiles += 1;
     share.rows += n;
+    progress.add(n, H);
     if (policy.band_rows > 0) return;
     // Adapt: aim at 80% of the launch limit, or (no limit) 100 ms per band
     // with several devices, growing at most 4x per step.
@@ -88,13 +103,14 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
 
 }  // namespace
 
-std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img,
-                                      const TilePolicy& policy) {
+std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img, const TilePolicy& policy,
+                                      const ProgressFn& progress) {
+  RowProgress rows(progress, img.height);
   std::vector<DeviceShare> shares(workers.size());
   for (size_t i = 0; i < workers.size(); ++i) shares[i].device = workers[i]->device().name;
   BandQueue queue(img.height, int(workers.size()));
   if (workers.size() == 1) {
-    run_worker(*workers[0], queue, img, policy, 1, shares[0]);
+    run_worker(*workers[0], queue, img, policy, 1, shares[0], rows);
     return shares;
   }
   // One host thread per device: each owns its context, queue and program, and
@@ -104,7 +120,7 @@ std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& worker
   for (size_t i = 0; i < workers.size(); ++i) {
     threads.emplace_back([&, i] {
       try {
-        run_worker(*workers[i], queue, img, policy, int(workers.size()), shares[i]);
+        run_worker(*workers[i], queue, img, policy, int(workers.size()), shares[i], rows);
       } catch (...) {
         errors[i] = std::current_exception();
       }

@@ -10,6 +10,7 @@
 
 #include "image/image.hpp"
 #include "render/device_renderer.hpp"
+#include "util/progress.hpp"
 
 namespace clrt {
 
@@ -52,8 +53,9 @@ class BandQueue {
 // Renders the whole frame of every worker's prepared scene into `img` (all
 // workers must have been prepared with the same scene and size). Returns one
 // share per worker, in order. Exceptions from any worker are rethrown.
-std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img,
-                                      const TilePolicy& policy);
+// `progress` (optional): rows done of img.height, after each band.
+std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img, const TilePolicy& policy,
+                                      const ProgressFn& progress = {});
 
 // The effective launch limit of `policy` for a device of this type string.
 double launch_limit_ms(const TilePolicy& policy, const std::string& device_type);

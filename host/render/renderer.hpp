@@ -29,6 +29,9 @@ struct RenderSettings {
   // Where results are read (not mapped), read one band's while the next
   // band's kernel runs (false: one band at a time; bench compares both).
   bool overlap_downloads = true;
+  // render(): called with 0 rows done of the frame's height ("rows"), then
+  // as bands finish, from the devices' threads; empty: none.
+  ProgressFn progress{};
 };
 
 // The last prepare() and render(), over every device.

@@ -62,6 +62,10 @@ struct Camera {
   std::array<double, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major
   double viewport_w = 1, viewport_h = 1;
   double projection_plane_d = 1;
+  // "aspect": "image": the viewport's shape follows the image's
+  // (scene/viewport.hpp); false ("viewport", the default): the book's
+  // viewport as given, stretched to any image.
+  bool aspect_from_image = false;
 };
 
 struct Scene {

@@ -71,6 +71,7 @@ enum class Slot : unsigned char {
   Rotation,
   Viewport,
   Distance,
+  Aspect,
   // of a sphere
   Center,
   Radius,
@@ -120,7 +121,7 @@ constexpr std::string_view kKeyNames[] = {
     // root
     "camera", "background", "recursion_depth", "epsilon", "spheres", "lights", "planes", "triangles", "meshes",
     // camera
-    "position", "rotation", "viewport", "projection_plane_d",
+    "position", "rotation", "viewport", "projection_plane_d", "aspect",
     // sphere
     "center", "radius", "color", "specular", "reflective", "transparency", "refractive_index",
     // light
@@ -282,6 +283,12 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
     const Slot s = enter_value();
     if (s == Slot::File) {
       mesh_file(v);
+      return true;
+    }
+    if (s == Slot::Aspect) {
+      if (v != "viewport" && v != "image")
+        fail(value_path(), "unknown aspect " + json_quoted(v) + " (expected viewport or image)");
+      scene_.camera.aspect_from_image = v == "image";
       return true;
     }
     if (s != Slot::Type) type_error(s, "string");
@@ -531,6 +538,7 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
         fail(value_path(), "expected an integer, got " + got);
       case Slot::Type:
       case Slot::File:
+      case Slot::Aspect:
         fail(value_path(), "expected a string");
       default:
         fail(value_path(), "expected a number, got " + got);
@@ -927,6 +935,7 @@ std::string scene_to_json(const Scene& s, JsonStyle style) {
                                               json::array({r[6], r[7], r[8]})})},
                     {"viewport", json::array({s.camera.viewport_w, s.camera.viewport_h})},
                     {"projection_plane_d", s.camera.projection_plane_d}};
+  if (s.camera.aspect_from_image) root["camera"]["aspect"] = "image";
   root["background"] = v3(s.background);
   root["recursion_depth"] = s.recursion_depth;
   root["epsilon"] = s.epsilon;

@@ -44,13 +44,13 @@ TEST_CASE("thresholds: pass, fail on each limit, NaN always fails", "[compare]")
 TEST_CASE("clrt compare exit codes: 0 within the limits, 1 outside, 2 bad input", "[cli][compare][opencl]") {
   const std::string demo = source_path("scenes/cgfs-demo.json");
   // Robust float32 on the demo: a handful of silhouette pixels at most.
-  auto pass = run_clrt({"compare", demo, "--width", "80", "--height", "60", "--fail-percent", "1"});
+  auto pass = run_clrt({"compare", demo, "--width", "80", "--height", "80", "--fail-percent", "1"});
   INFO(pass.err);
   CHECK(pass.status == 0);
   CHECK(pass.out.find("verdict        PASS") != std::string::npos);
   // Naive float32 shows the floor acne (~2% of pixels, tens of levels): fails
   // --fail-max 1, with one "check failed" line on stderr.
-  auto fail = run_clrt({"compare", demo, "--width", "80", "--height", "60", "--precision", "naive", "--fail-max", "1"});
+  auto fail = run_clrt({"compare", demo, "--width", "80", "--height", "80", "--precision", "naive", "--fail-max", "1"});
   CHECK(fail.status == 1);
   CHECK(fail.out.find("verdict        FAIL") != std::string::npos);
   CHECK(fail.out.find("worst pixel") != std::string::npos);
@@ -58,7 +58,7 @@ TEST_CASE("clrt compare exit codes: 0 within the limits, 1 outside, 2 bad input"
   CHECK(fail.err.rfind("clrt: check failed: compare: ", 0) == 0);
   // JSON carries the verdict and the worst pixel.
   auto json = run_clrt(
-      {"compare", demo, "--width", "80", "--height", "60", "--precision", "naive", "--fail-max", "1", "--json"});
+      {"compare", demo, "--width", "80", "--height", "80", "--precision", "naive", "--fail-max", "1", "--json"});
   CHECK(json.status == 1);
   auto j = nlohmann::json::parse(json.out);
   CHECK(j["verdict"] == "fail");

@@ -1,53 +1,111 @@
-// test_plot.cpp - the PNG chart module: ticks and a written, non-blank file.
+// test_plot.cpp - the PLplot chart module: each format's file (magic bytes),
+// a non-blank PNG of the asked size, fixed colours by name, refused formats.
 #include <OpenImageIO/imagebuf.h>
 
 #include <catch2/catch.hpp>
-#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
 
 #include "image/plot.hpp"
+#include "util/error.hpp"
 
 using namespace clrt;
 
-TEST_CASE("linear ticks are nice 1/2/5 steps inside the range", "[plot]") {
-  auto t = plot_ticks(0.0, 10.0, false);
-  REQUIRE(t.size() >= 3);
-  CHECK(t.front() == Approx(0.0));
-  CHECK(t.back() == Approx(10.0));
-  CHECK(t[1] - t[0] == Approx(2.0));  // 10 / 6 -> step 2
-  auto n = plot_ticks(-0.37, 0.81, false);
-  for (double v : n) CHECK((v >= -0.37 && v <= 0.81));
+namespace {
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
-TEST_CASE("log ticks are powers of ten", "[plot]") {
-  auto t = plot_ticks(1e-3, 1e3, true);
-  REQUIRE(t.size() == 7);
-  for (size_t i = 0; i < t.size(); ++i) CHECK(t[i] == Approx(std::pow(10.0, int(i) - 3)));
-  // Under one decade: falls back to linear ticks, still inside the range.
-  auto u = plot_ticks(2.0, 7.0, true);
-  REQUIRE(u.size() >= 2);
-  for (double v : u) CHECK((v >= 2.0 && v <= 7.0));
-}
-
-TEST_CASE("write_plot writes a non-blank PNG of the requested size", "[plot]") {
-  auto path = (std::filesystem::temp_directory_path() / "clrt_test_plot.png").string();
-  std::filesystem::remove(path);
+std::vector<Series> sample_series() {
   Series a{"a", {1, 10, 100}, {0.5, 0.05, 0.005}};
   a.lines = true;
+  a.y_lo = {0.4, 0.04, 0.004};
+  a.y_hi = {0.6, 0.06, 0.006};
   Series b{"b", {3}, {0.2}};
   b.labels = {"point"};
+  b.x_lo = {2}, b.x_hi = {4};
+  return {a, b};
+}
+
+}  // namespace
+
+TEST_CASE("write_plot writes PNG, SVG and PDF by extension", "[plot]") {
+  const auto dir = std::filesystem::temp_directory_path();
   PlotOptions o;
   o.width = 400, o.height = 300, o.log_x = true, o.log_y = true;
-  write_plot(path, "title", "x", "y", {a, b}, o);
+  for (const std::string ext : {"png", "svg", "pdf", "PNG"}) {
+    const std::string path = (dir / ("clrt_test_plot." + ext)).string();
+    std::filesystem::remove(path);
+    write_plot(path, "title", "x", "y", sample_series(), o);
+    const std::string bytes = file_bytes(path);
+    INFO(path);
+    REQUIRE(bytes.size() > 100);
+    if (ext == "png" || ext == "PNG") CHECK(bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0);
+    if (ext == "svg") CHECK(bytes.find("<svg") != std::string::npos);
+    if (ext == "pdf") CHECK(bytes.compare(0, 5, "%PDF-") == 0);
+    std::filesystem::remove(path);
+  }
+  // No scratch file is left beside the target.
+  for (auto& e : std::filesystem::directory_iterator(dir))
+    CHECK(e.path().filename().string().find("clrt_test_plot") == std::string::npos);
+}
+
+TEST_CASE("write_plot writes a non-blank PNG of the requested size, two panels stacked", "[plot]") {
+  auto path = (std::filesystem::temp_directory_path() / "clrt_test_plot2.png").string();
+  std::filesystem::remove(path);
+  PlotOptions o;
+  o.width = 400, o.height = 300, o.integer_x = true, o.x_from_zero = true;
+  write_plot(path, {PlotPanel{"one", "x", "y", sample_series(), o}, PlotPanel{"two", "x", "y", sample_series(), o}});
   OIIO::ImageBuf img(path);
   REQUIRE(img.read());
   CHECK(img.spec().width == 400);
-  CHECK(img.spec().height == 300);
-  // Count non-white pixels: axes, grid, markers and text must be there.
+  CHECK(img.spec().height == 600);
   size_t ink = 0;
-  for (OIIO::ImageBuf::ConstIterator<unsigned char, float> it(img); !it.done(); ++it)  // 8-bit PNG, read as float
+  for (OIIO::ImageBuf::ConstIterator<unsigned char, float> it(img); !it.done(); ++it)
     if (it[0] < 0.5f || it[1] < 0.5f || it[2] < 0.5f) ++ink;
   CHECK(ink > 1000);
   std::filesystem::remove(path);
-  CHECK_THROWS(write_plot(path, "", "", "", {Series{"bad", {1, 2}, {1}}}, o));
+  CHECK_THROWS_AS(write_plot(path, "", "", "", {Series{"bad", {1, 2}, {1}}}, o), std::invalid_argument);
+  Series bars{"bars", {1, 2}, {1, 2}};
+  bars.y_lo = {0.5};
+  bars.y_hi = {1.5};
+  CHECK_THROWS_AS(write_plot(path, "", "", "", {bars}, o), std::invalid_argument);
+  CHECK_FALSE(std::filesystem::exists(path));
+}
+
+TEST_CASE("a plot with an unknown extension is refused before drawing", "[plot]") {
+  const auto dir = std::filesystem::temp_directory_path();
+  for (const std::string name : {"p.jpg", "p.txt", "p", "p.exr"}) {
+    const std::string path = (dir / ("clrt_test_" + name)).string();
+    INFO(path);
+    CHECK_THROWS_AS(check_plot_output(path), UserError);
+    CHECK_THROWS_AS(write_plot(path, "", "", "", sample_series()), UserError);
+    CHECK_FALSE(std::filesystem::exists(path));
+  }
+  CHECK_NOTHROW(check_plot_output((dir / "clrt_test_ok.svg").string()));
+  CHECK_THROWS_AS(check_plot_output((dir / "no/such/dir/p.png").string()), UserError);
+}
+
+TEST_CASE("a name has one colour whatever else is plotted; markers differ", "[plot]") {
+  // The accuracy variants each have their own fixed colour.
+  const std::vector<std::string> variants{
+      "naive", "stable", "robust", "fast", "fp64", "robust+subsample-shade", "robust+subsample-interpolate"};
+  std::set<PlotColor> seen;
+  for (const auto& v : variants) {
+    CHECK(plot_color_for_name(v) == plot_color_for_name(std::string(v)));
+    seen.insert(plot_color_for_name(v));
+  }
+  CHECK(seen.size() == variants.size());
+  CHECK(plot_color_for_name("robust") == plot_palette_color(0));
+  CHECK(plot_color_for_name("some other name") == plot_color_for_name("some other name"));
+  std::set<std::string> markers;
+  for (size_t i = 0; i < plot_marker_count(); ++i) markers.insert(plot_marker(i));
+  CHECK(markers.size() == plot_marker_count());
+  CHECK(std::string(plot_marker(plot_marker_count())) == plot_marker(0));
 }
