@@ -113,7 +113,7 @@ std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySe
     } else {
       j.update(nlohmann::ordered_json{{"kernel_ms_median", r.median_ms},
                                       {"kernel_ms", r.kernel_ms},
-                                      {"kernel", nlohmann::ordered_json(stats_json(summarize(r.kernel_ms)))},
+                                      {"kernel", nlohmann::ordered_json(stats_json(summarize(r.kernel_ms), "ms"))},
                                       {"kernel_time_source", r.time_source()}});
       j.update(comparison_json(r.error));
     }

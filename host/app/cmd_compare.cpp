@@ -6,6 +6,7 @@
 
 #include "app/compare_report.hpp"
 #include "app/engine.hpp"
+#include "app/image_metadata.hpp"
 #include "app/options.hpp"
 #include "app/report_header.hpp"
 #include "cl/launch_timing.hpp"
@@ -57,7 +58,11 @@ void add_compare_command(CLI::App& app) {
     }
     Comparison c = compare_images(img, ref);
     const Verdict verdict = judge(c, *limits);
-    if (!diff->empty()) write_rgb8(diff_image(img, ref), img.width, img.height, *diff);
+    if (!diff->empty())
+      write_rgb8(
+          diff_image(img, ref), img.width, img.height, *diff,
+          image_metadata("clrt compare --diff (|image - reference| x 16, hit flips magenta, shadow flips cyan)", *o,
+                         depth, classified ? "opencl" : "image " + *image, classified ? cl_run.device : "-"));
     const std::string source = time_source(cl_run.frame.host_timed_launches, cl_run.frame.launches);
     if (*as_json) {
       nlohmann::ordered_json j = header_json(report_header(classified ? cl_run.device : std::string()));

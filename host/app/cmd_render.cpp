@@ -5,6 +5,7 @@
 
 #include "app/engine.hpp"
 #include "app/frame_report.hpp"
+#include "app/image_metadata.hpp"
 #include "app/options.hpp"
 #include "cl/launch_timing.hpp"
 #include "image/image_file.hpp"
@@ -13,49 +14,7 @@
 #include "util/output_file.hpp"
 #include "util/progress.hpp"
 
-#ifndef CLRT_VERSION
-#define CLRT_VERSION "unknown"
-#endif
-
 namespace clrt {
-
-namespace {
-
-// How the pixels were sampled, in words: "spp 1", "spp 4, adaptive 8",
-// "spp 1, subsample shade".
-std::string sampling_words(const Sampling& s) {
-  std::string w = "spp " + std::to_string(s.spp);
-  if (s.adaptive()) {
-    char t[32];
-    std::snprintf(t, sizeof t, "%g", s.adaptive_threshold);
-    w += std::string(", adaptive ") + t;
-  }
-  if (s.subsample != Subsample::Off) w += ", subsample " + subsample_name(s.subsample);
-  return w;
-}
-
-// What the image says about itself (README, "Image files").
-ImageMetadata render_metadata(const RenderOptions& o, int depth, const EngineRun& run) {
-  const std::string precision = o.engine == "opencl" ? o.kernel.precision : "reference (scalar double)";
-  const std::string size = std::to_string(o.image.width) + "x" + std::to_string(o.image.height);
-  const std::string sampling = sampling_words(o.image.sampling());
-  return {
-      {"Software", std::string("clrt ") + CLRT_VERSION},
-      {"ImageDescription", "clrt render of " + o.scene_path + ": " + size + ", depth " + std::to_string(depth) +
-                               ", precision " + precision + ", " + sampling + ", on " + run.device},
-      {"clrt:version", CLRT_VERSION},
-      {"clrt:scene", o.scene_path},
-      {"clrt:width", std::to_string(o.image.width)},
-      {"clrt:height", std::to_string(o.image.height)},
-      {"clrt:depth", std::to_string(depth)},
-      {"clrt:precision", precision},
-      {"clrt:sampling", sampling},
-      {"clrt:engine", o.engine},
-      {"clrt:device", run.device},
-  };
-}
-
-}  // namespace
 
 void add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
@@ -80,7 +39,7 @@ void add_render_command(CLI::App& app) {
     // float colour for float ones, never the per-pixel classification.
     const FrameContents contents{output_pixel_format(*out, *format), /*classes=*/false};
     Image img = run_engine(o->engine, scene, *o, depth, &run, contents);
-    write_image(img, *out, render_metadata(*o, depth, run), *format);
+    write_image(img, *out, image_metadata("clrt render", *o, depth, o->engine, run.device), *format);
     // The report goes to stderr when the image itself goes to stdout.
     std::FILE* report = target.kind == OutputKind::File ? stdout : stderr;
     if (report == stderr && quiet()) return;  // --quiet: only the image

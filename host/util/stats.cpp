@@ -32,8 +32,10 @@ Stats summarize(const std::vector<double>& v) {
   return s;
 }
 
-nlohmann::json stats_json(const Stats& s) {
-  return {{"n", s.n}, {"median", s.median}, {"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
+nlohmann::json stats_json(const Stats& s, const std::string& unit) {
+  const std::string u = "_" + unit;
+  return {{"n", s.n},       {"median" + u, s.median}, {"mean" + u, s.mean},
+          {"sd" + u, s.sd}, {"min" + u, s.min},       {"max" + u, s.max}};
 }
 
 std::string format_stats(const Stats& s, const char* unit, int decimals) {

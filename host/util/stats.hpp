@@ -16,8 +16,9 @@ struct Stats {
 double median(std::vector<double> v);
 Stats summarize(const std::vector<double>& v);
 
-// {"n", "median", "mean", "sd", "min", "max"}
-nlohmann::json stats_json(const Stats& s);
+// {"n", "median_UNIT", "mean_UNIT", "sd_UNIT", "min_UNIT", "max_UNIT"}: the
+// unit in every name ("ms" for times, "ratio" for speedups).
+nlohmann::json stats_json(const Stats& s, const std::string& unit);
 // "median 12.34 ms, mean 12.50 ± 0.40, min 12.01, max 13.20 (N=7)"; with N=1
 // just "12.34 ms (N=1)". `unit` follows the median.
 std::string format_stats(const Stats& s, const char* unit = "ms", int decimals = 2);

@@ -155,6 +155,24 @@ TEST_CASE("every render carries its metadata", "[cli][image]") {
   CHECK(read_oiio(dir / "m.hdr").spec.width == 16);
 }
 
+TEST_CASE("compare's --diff image carries the same metadata", "[cli][image][opencl]") {
+  TempDir dir;
+  const std::string path = dir / "d.png";
+  const RunResult r =
+      run_clrt({"compare", demo_scene(), "--width", "16", "--height", "16", "--depth", "1", "--diff", path});
+  INFO("stderr: " << r.err);
+  REQUIRE(r.status == 0);
+  const clrt::ImageMetadata meta =
+      clrt::read_metadata(path, {"clrt:scene", "clrt:width", "clrt:depth", "clrt:precision", "clrt:engine"});
+  REQUIRE(meta.size() == 5);
+  CHECK(meta[0].second == demo_scene());
+  CHECK(meta[1].second == "16");
+  CHECK(meta[2].second == "1");
+  CHECK(meta[3].second == "robust");
+  CHECK(meta[4].second == "opencl");
+  CHECK_THAT(read_oiio(path).spec.get_string_attribute("ImageDescription"), StartsWith("clrt compare --diff"));
+}
+
 TEST_CASE("float files read back as the same image: compare --image and oiiotool", "[cli][image]") {
   TempDir dir;
   for (const std::string ext : {"png", "exr", "pfm"}) {

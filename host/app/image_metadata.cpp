@@ -1,0 +1,47 @@
+// image_metadata.cpp - the attributes of every image clrt writes.
+#include "app/image_metadata.hpp"
+
+#include <cstdio>
+
+#ifndef CLRT_VERSION
+#define CLRT_VERSION "unknown"
+#endif
+
+namespace clrt {
+
+std::string sampling_words(const Sampling& s) {
+  std::string w = "spp " + std::to_string(s.spp);
+  if (s.adaptive()) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%g", s.adaptive_threshold);
+    w += std::string(", adaptive ") + t;
+  }
+  if (s.subsample != Subsample::Off) w += ", subsample " + subsample_name(s.subsample);
+  return w;
+}
+
+ImageMetadata image_metadata(const std::string& what, const RenderOptions& o, int depth, const std::string& engine,
+                             const std::string& device) {
+  // (an image file's precision is not known)
+  const std::string precision = engine == "opencl"      ? o.kernel.precision
+                                : engine == "reference" ? "reference (scalar double)"
+                                                        : "-";
+  const std::string size = std::to_string(o.image.width) + "x" + std::to_string(o.image.height);
+  const std::string sampling = sampling_words(o.image.sampling());
+  return {
+      {"Software", std::string("clrt ") + CLRT_VERSION},
+      {"ImageDescription", what + " of " + o.scene_path + ": " + size + ", depth " + std::to_string(depth) +
+                               ", precision " + precision + ", " + sampling + ", on " + device},
+      {"clrt:version", CLRT_VERSION},
+      {"clrt:scene", o.scene_path},
+      {"clrt:width", std::to_string(o.image.width)},
+      {"clrt:height", std::to_string(o.image.height)},
+      {"clrt:depth", std::to_string(depth)},
+      {"clrt:precision", precision},
+      {"clrt:sampling", sampling},
+      {"clrt:engine", engine},
+      {"clrt:device", device},
+  };
+}
+
+}  // namespace clrt
