@@ -35,6 +35,14 @@ std::string extension_of(const std::string& path) {
   return ext.empty() ? ext : ext.substr(1);
 }
 
+}  // namespace
+
+std::string lowercase_extension(const std::string& path) {
+  return lower(extension_of(path));
+}
+
+namespace {
+
 // The name whose extension picks the encoder: "out.FORMAT" for --format,
 // OUT itself, or "out.png" for standard output and devices named without an
 // extension (/dev/stdout).
@@ -44,7 +52,7 @@ std::string format_name(const std::string& path, OutputKind kind, const std::str
 }
 
 std::string format_ext(const std::string& path, OutputKind kind, const std::string& format) {
-  return lower(extension_of(format_name(path, kind, format)));
+  return lowercase_extension(format_name(path, kind, format));
 }
 
 bool is_float_ext(const std::string& ext) {
@@ -69,7 +77,7 @@ void check_image_format(const std::string& path, OutputKind kind, const std::str
   if (format.empty() && extension_of(path).empty() && kind == OutputKind::File)
     throw UserError(path + ": output has no file extension (use .png, .ppm, .exr, .pfm, ... or --format)");
   const std::string name = format_name(path, kind, format);
-  const std::string ext = lower(extension_of(name));
+  const std::string ext = lowercase_extension(name);
   if (ext == "pfm") return;
   const auto& known = written_without_asking();
   if (std::find(known.begin(), known.end(), ext) != known.end()) {
@@ -139,7 +147,7 @@ void write_pixels(const std::string& path, const std::string& format, int w, int
   const OutputKind kind = resolve_output(path).kind;
   check_image_format(path, kind, format);
   const std::string name = format_name(path, kind, format);
-  const std::string ext = lower(extension_of(name));
+  const std::string ext = lowercase_extension(name);
   std::string bytes;
   if (ext == "pfm") {
     const size_t n = size_t(w) * h * 3;
@@ -219,7 +227,7 @@ void write_image(const Image& img, const std::string& path, const ImageMetadata&
 
 ImageMetadata read_metadata(const std::string& path, const std::vector<std::string>& keys) {
   ImageMetadata out;
-  const std::string ext = lower(extension_of(path));
+  const std::string ext = lowercase_extension(path);
   if (comment_header_ext(ext)) {
     const ImageMetadata all = header_comments(path);
     for (const auto& k : keys)
@@ -255,7 +263,7 @@ Image read_image(const std::string& path, int max_edge, long long max_pixels) {
   // EXR/HDR files hold the 0..255 scale).
   double scale = 1;
   if (floating) {
-    const std::string ext = lower(extension_of(path));
+    const std::string ext = lowercase_extension(path);
     std::string white = in->attribute(kWhiteKey);
     if (white.empty() && comment_header_ext(ext)) {
       const ImageMetadata m = read_metadata(path, {kWhiteKey});

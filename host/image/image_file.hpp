@@ -60,6 +60,10 @@ void write_image(const Image& img, const std::string& path, const ImageMetadata&
 // UserError naming the file when it cannot be read, has fewer than 3
 // channels, or is larger than max_edge per edge or max_pixels.
 Image read_image(const std::string& path, int max_edge, long long max_pixels);
+// The extension of `path`'s file name, lowercase, without the dot ("" for
+// none): what picks an image's or a plot's format.
+std::string lowercase_extension(const std::string& path);
+
 // A file's metadata as read_image() sees it: the string attributes `keys`
 // that it has (PPM and HDR comments included), in that order.
 ImageMetadata read_metadata(const std::string& path, const std::vector<std::string>& keys);

@@ -14,25 +14,13 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "image/image_file.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 
 namespace clrt {
 
 namespace {
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-// The extension of the file name in `path`, lower case, "" if none.
-std::string plot_extension(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const size_t dot = name.find_last_of('.');
-  return dot == std::string::npos || dot == 0 ? "" : lower(name.substr(dot + 1));
-}
 
 // The PLplot device that writes `ext`.
 std::string plot_device(const std::string& ext) {
@@ -241,7 +229,7 @@ const std::vector<std::string>& plot_extensions() {
 
 void check_plot_output(const std::string& path) {
   const OutputTarget target = check_output(path, "plot");
-  const std::string ext = plot_extension(target.kind == OutputKind::File ? path : target.path);
+  const std::string ext = lowercase_extension(target.kind == OutputKind::File ? path : target.path);
   const auto& known = plot_extensions();
   if (std::find(known.begin(), known.end(), ext) == known.end())
     throw UserError("plot " + path + ": unknown format" + (ext.empty() ? "" : " '." + ext + "'") +
@@ -308,7 +296,7 @@ void write_plot(const std::string& path, const std::vector<PlotPanel>& panels) {
     }
   if (panels.empty()) throw std::invalid_argument("write_plot: no panel");
   check_plot_output(path);
-  const std::string ext = plot_extension(path);
+  const std::string ext = lowercase_extension(path);
 
   // The page: the widest panel, the panels' heights added up.
   int width = 0, height = 0;
