@@ -212,7 +212,9 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
   const int col_step = strided ? 2 : 1;
   const int pass_w = strided ? (tile_w - first_col + 1) / 2 : tile_w;
   if (px >= pass_w || py >= tile_h) return;
-  const lint tile_col = first_col + col_step * (px + LANE_IOTA % CLRT_PACKET_COLS);
+  /* the tile column of lane j (an int, or LANE_IOTA for all lanes) */
+#define LANE_TILE_X(j) (first_col + col_step * (px + (j) % CLRT_PACKET_COLS))
+  const lint tile_col = LANE_TILE_X(LANE_IOTA);
 #else
   if (px >= tile_w || py >= tile_h) return;
   const lint tile_col = px + LANE_IOTA % CLRT_PACKET_COLS;
@@ -267,7 +269,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     STORE_LANES(searched, tests);
 #endif
     for (int j = 0; j < CLRT_LANES; ++j) {
-      const int jx = first_col + 2 * (px + j % CLRT_PACKET_COLS), jy = py + j / CLRT_PACKET_COLS;
+      const int jx = LANE_TILE_X(j), jy = py + j / CLRT_PACKET_COLS;
       if (jx >= tile_w || jy >= tile_h) continue;
       aux[(jy * tile_w + jx) * 2] = hits[j];
 #ifdef CLRT_COUNT_RAYS
@@ -294,7 +296,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     int shadow_both[CLRT_LANES];
 #endif
     for (int j = 0; j < CLRT_LANES; ++j) {
-      const int jx = first_col + col_step * (px + j % CLRT_PACKET_COLS), jy = py + j / CLRT_PACKET_COLS;
+      const int jx = LANE_TILE_X(j), jy = py + j / CLRT_PACKET_COLS;
       neighbours[j] = -1;
 #if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE
       mean_red[j] = mean_green[j] = mean_blue[j] = 0;
@@ -449,7 +451,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
 #endif
   for (int j = 0; j < CLRT_LANES; ++j) {
 #if CLRT_SUBSAMPLE
-    const int jx = first_col + col_step * (px + j % CLRT_PACKET_COLS), jy = py + j / CLRT_PACKET_COLS;
+    const int jx = LANE_TILE_X(j), jy = py + j / CLRT_PACKET_COLS;
 #else
     const int jx = px + j % CLRT_PACKET_COLS, jy = py + j / CLRT_PACKET_COLS;
 #endif
@@ -484,3 +486,6 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
 #endif
   }
 }
+#if CLRT_SUBSAMPLE
+#undef LANE_TILE_X
+#endif

@@ -295,6 +295,13 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
   const Camera& cam = scene.camera;
   const double camera_medium = tracer.CameraMedium();
   const auto& m = cam.rotation;
+  // The camera ray's direction through canvas point (cx, cy):
+  // CanvasToViewport, then the camera rotation.
+  auto camera_ray = [&](double cx, double cy) {
+    const Vec3 d{cx * cam.viewport_w / width, cy * cam.viewport_h / height, cam.projection_plane_d};
+    return Vec3{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
+                m[6] * d.x + m[7] * d.y + m[8] * d.z};
+  };
   // Subsampling: the even columns first, each traced as usual; then the odd
   // ones, from their neighbours' primary hits (scene/sampling.hpp).
   const int passes = sampling.subsample != Subsample::Off ? 2 : 1;
@@ -320,9 +327,7 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
           }
           if (assumed) {
             const int32_t id = img.hit[p - 1];
-            Vec3 D{x * cam.viewport_w / width, y * cam.viewport_h / height, cam.projection_plane_d};
-            D = Vec3{m[0] * D.x + m[1] * D.y + m[2] * D.z, m[3] * D.x + m[4] * D.y + m[5] * D.z,
-                     m[6] * D.x + m[7] * D.y + m[8] * D.z};
+            const Vec3 D = camera_ray(x, y);
             Hit h;  // both neighbours missed: background, no search
             if (id >= 0) {
               h = tracer.IntersectOnly(id, cam.position, D, 1, kInf);
@@ -341,11 +346,8 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
         // Sample s's colour; its primary hit goes to *hit_id.
         auto sample = [&](int s, int32_t* hit_id, int32_t* shadowed) {
           const double ox = ((s % n) + 0.5) / n - 0.5, oy = ((s / n) + 0.5) / n - 0.5;
-          // CanvasToViewport, then the camera rotation.
-          Vec3 d{(x + ox) * cam.viewport_w / width, (y + oy) * cam.viewport_h / height, cam.projection_plane_d};
-          Vec3 D{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
-                 m[6] * d.x + m[7] * d.y + m[8] * d.z};
-          return tracer.TraceRay(cam.position, D, 1, kInf, depth, camera_medium, hit_id, shadowed);
+          return tracer.TraceRay(cam.position, camera_ray(x + ox, y + oy), 1, kInf, depth, camera_medium, hit_id,
+                                 shadowed);
         };
         // The classification is the first sample's.
         Vec3 sum{0, 0, 0};
