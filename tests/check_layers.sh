@@ -2,11 +2,11 @@
 # check_layers.sh SOURCE_DIR - the layering rule of host/, checked on every
 # include: a file in host/<layer>/ includes headers of its own layer and of
 # the layers before it only, in this order (the one place it is written):
-#   util < scene < image < reference < cl < render < eval < app
+#   util < scene < image < reference < cl < render < eval < dist < app
 # and only app/ includes CLI11. Prints each violation; exit 1 if any.
 set -euo pipefail
 root=${1:-.}
-layers=(util scene image reference cl render eval app)
+layers=(util scene image reference cl render eval dist app)
 rank() {
   local i
   for i in "${!layers[@]}"; do [[ ${layers[$i]} == "$1" ]] && { echo "$i"; return; }; done

@@ -13,7 +13,20 @@
 #include <string>
 #include <vector>
 
+#include "util/build_features.hpp"
+
 namespace clrt_test {
+
+// The image the CLI tests write where its format does not matter: PNG, or
+// PPM in a lean build (CLRT_LEAN=ON writes and reads PPM and PFM only).
+inline const std::string kImageExt = clrt::kLeanBuild ? ".ppm" : ".png";
+inline std::string image_name(const std::string& stem) {
+  return stem + kImageExt;
+}
+// Whether `bytes` begin as such an image does (what `-o -` writes).
+inline bool starts_as_image(const std::string& bytes) {
+  return bytes.rfind(clrt::kLeanBuild ? "P6\n" : "\x89PNG", 0) == 0;
+}
 
 // A fresh directory under the system temp dir, removed with its contents.
 class TempDir {
@@ -75,21 +88,30 @@ inline std::string slurp(const std::string& path) {
   return ss.str();
 }
 
-// Runs `clrt ARGS...` with `env` (e.g. "OCL_ICD_VENDORS=/x") prepended;
-// stdout/stderr go to files in `scratch` (which is not the output directory
-// the tests inspect).
-inline RunResult run_clrt(const std::vector<std::string>& args, const std::string& env = "") {
+// Runs a shell command line; stdout/stderr go to files in a scratch
+// directory (not the output directory the tests inspect).
+inline RunResult run_command_line(const std::string& line) {
   static TempDir scratch;
-  std::string cmd = env.empty() ? "" : env + " ";
-  cmd += shell_quote(CLRT_BINARY);
-  for (const auto& a : args) cmd += " " + shell_quote(a);
-  cmd += " >" + shell_quote(scratch / "out") + " 2>" + shell_quote(scratch / "err") + " </dev/null";
+  const std::string cmd =
+      line + " >" + shell_quote(scratch / "out") + " 2>" + shell_quote(scratch / "err") + " </dev/null";
   int st = std::system(cmd.c_str());
   RunResult r;
   r.status = (st != -1 && WIFEXITED(st)) ? WEXITSTATUS(st) : -1;
   r.out = slurp(scratch / "out");
   r.err = slurp(scratch / "err");
   return r;
+}
+
+// `clrt ARGS...`, quoted, as a shell command line.
+inline std::string clrt_command(const std::vector<std::string>& args) {
+  std::string cmd = shell_quote(CLRT_BINARY);
+  for (const auto& a : args) cmd += " " + shell_quote(a);
+  return cmd;
+}
+
+// Runs `clrt ARGS...` with `env` (e.g. "OCL_ICD_VENDORS=/x") prepended.
+inline RunResult run_clrt(const std::vector<std::string>& args, const std::string& env = "") {
+  return run_command_line((env.empty() ? "" : env + " ") + clrt_command(args));
 }
 
 }  // namespace clrt_test

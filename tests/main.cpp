@@ -6,8 +6,12 @@
 #include <cstdlib>
 
 #include "cli_run.hpp"
+#include "dist/communicator.hpp"
 
 int main(int argc, char** argv) {
+  // Under mpirun (the [mpi] tests, ctest's mpi_tests_3_ranks): every rank
+  // runs the same tests together; otherwise a world of one.
+  clrt::dist::Session mpi(argc, argv);
   const char* set = std::getenv("CLRT_CACHE_DIR");
   std::unique_ptr<clrt_test::TempDir> cache;
   if (!set || !*set) {

@@ -100,8 +100,10 @@ std::string accuracy_markdown(const std::vector<AccuracyRow>& rows) {
   return os.str();
 }
 
-std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySettings& s, const std::string& device) {
+std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySettings& s, const std::string& device,
+                          int mpi_ranks) {
   nlohmann::ordered_json out = header_json(report_header(device));
+  if (mpi_ranks > 1) out["mpi_ranks"] = mpi_ranks;
   out.update(nlohmann::ordered_json{
       {"device", device}, {"width", s.width}, {"height", s.height}, {"spp", s.spp}, {"repeat", s.repeat}});
   nlohmann::ordered_json arr = nlohmann::ordered_json::array();

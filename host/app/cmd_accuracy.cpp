@@ -7,6 +7,9 @@
 #include "app/accuracy_report.hpp"
 #include "app/options.hpp"
 #include "cl/device.hpp"
+#include "dist/communicator.hpp"
+#include "dist/eval_grids.hpp"
+#include "dist/job.hpp"
 #include "eval/accuracy.hpp"
 #include "image/image_file.hpp"
 #include "image/plot.hpp"
@@ -33,20 +36,91 @@ std::vector<AccuracyVariant> parse_variants(const std::string& list) {
   if (out.empty()) throw UserError("--variants: empty list");
   return out;
 }
+
+struct AccuracyOptions {
+  std::vector<std::string> scenes;
+  ImageOptions image;
+  DeviceOptions device;
+  KernelOptions kernel;
+  int repeat = 7;
+  std::string variants = default_variant_list();
+  std::string csv, plot;
+  bool json = false, markdown = false;
+
+  // Checks the options and the output files (before anything is measured).
+  void check() const {
+    image.validate();
+    if (!plot.empty()) check_plot_output(plot);    // fail before measuring
+    if (!csv.empty()) check_writable(csv, "CSV");  // fail before measuring, not after
+    (void)settings();
+  }
+  // The settings (UserError on a bad precision or variant).
+  AccuracySettings settings() const {
+    AccuracySettings s;
+    s.width = image.width;
+    s.height = image.height;
+    s.depth = image.depth;
+    s.spp = image.spp;
+    s.adaptive = image.adaptive;
+    s.repeat = repeat;
+    s.base = kernel.config();
+    s.variants = parse_variants(variants);
+    return s;
+  }
+};
+
+void report_accuracy(const std::vector<AccuracyRow>& rows, const AccuracyOptions& o, const AccuracySettings& s,
+                     const std::string& device, const dist::GridStats* grid) {
+  const int ranks = grid ? int(grid->ranks.size()) : 1;
+  if (!o.csv.empty()) write_accuracy_csv(rows, o.csv, device);
+  if (!o.plot.empty())
+    write_accuracy_plot(
+        rows, o.plot,
+        "Error vs kernel time, " + std::to_string(s.width) + "x" + std::to_string(s.height) + ", " + device);
+  if (o.json) {
+    std::printf("%s\n", accuracy_json(rows, s, device, ranks).c_str());
+    return;
+  }
+  std::printf("device %s, %dx%d, %dx%d samples per pixel, kernel time = median of %d runs after a warm-up\n",
+              device.c_str(), s.width, s.height, s.spp, s.spp, s.repeat);
+  if (grid)
+    std::printf(
+        "%d MPI ranks: each (scene, variant) timed on the rank that ran it, its runs back to back; ranks on "
+        "one machine contend for its cores, so the times are not comparable with a one-process run\n",
+        ranks);
+  std::printf("%s", o.markdown ? accuracy_markdown(rows).c_str() : accuracy_table(rows).c_str());
+  if (grid) std::printf("%s", dist::grid_share_lines(*grid).c_str());
+}
+
+// `clrt accuracy` launched by mpirun with several ranks: rank 0 checks the
+// options and outputs, reads the scenes and selects the device; every rank
+// gets them (no shared file system is assumed) and measures the cells rank
+// 0 hands it (dist/eval_grids.hpp); rank 0 reports.
+void accuracy_across_ranks(const AccuracyOptions& o) {
+  dist::Communicator& comm = dist::world();
+  DeviceInfo dev;
+  const dist::Bytes bytes = dist::share_from_root(comm, [&] {
+    o.check();
+    dist::AccuracyInput in;
+    for (const auto& p : o.scenes) in.scenes.push_back({p, o.image.load_scene(p)});
+    dev = o.device.one();
+    in.device = dist::device_label(dev);
+    return dist::encode_accuracy_input(in);
+  });
+  const dist::AccuracyInput in = dist::decode_accuracy_input(bytes);
+  AccuracySettings s = o.settings();  // (as on rank 0, where it passed)
+  s.progress = stderr_progress();
+  // Rank 0's device is the one it selected; the others select their own.
+  const auto local = [&] { return comm.rank() == 0 ? dev : o.device.one(); };
+  dist::GridStats stats;
+  auto rows = dist::accuracy_across_ranks(comm, in, local, s, &stats);
+  if (comm.rank() == 0) report_accuracy(rows, o, s, in.device.name, &stats);
+}
+
 }  // namespace
 
 void add_accuracy_command(CLI::App& app) {
-  struct Opts {
-    std::vector<std::string> scenes;
-    ImageOptions image;
-    DeviceOptions device;
-    KernelOptions kernel;
-    int repeat = 7;
-    std::string variants = default_variant_list();
-    std::string csv, plot;
-    bool json = false, markdown = false;
-  };
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<AccuracyOptions>();
   auto* cmd = app.add_subcommand(
       "accuracy",
       "Kernel time (median of --repeat after a warm-up) against error vs the reference, per variant x scene");
@@ -63,36 +137,14 @@ void add_accuracy_command(CLI::App& app) {
   cmd->add_option("--csv", o->csv, "Also write the rows as CSV to this file");
   cmd->add_option("--plot", o->plot, "Also write an error-vs-time chart (log-log) here: .png, .svg or .pdf");
   cmd->callback([o] {
-    o->image.validate();
-    if (!o->plot.empty()) check_plot_output(o->plot);    // fail before measuring
-    if (!o->csv.empty()) check_writable(o->csv, "CSV");  // fail before measuring, not after
-    AccuracySettings s;
-    s.width = o->image.width;
-    s.height = o->image.height;
-    s.depth = o->image.depth;
-    s.spp = o->image.spp;
-    s.adaptive = o->image.adaptive;
-    s.repeat = o->repeat;
-    s.base = o->kernel.config();
-    s.variants = parse_variants(o->variants);
+    if (dist::world().distributed()) return accuracy_across_ranks(*o);
+    o->check();
+    AccuracySettings s = o->settings();
     std::vector<NamedScene> scenes;
     for (const auto& p : o->scenes) scenes.push_back({p, o->image.load_scene(p)});
     const DeviceInfo dev = o->device.one();
-    const std::string device = dev.name;
     s.progress = stderr_progress();  // on a terminal only, not with --quiet
-    auto rows = measure_accuracy(scenes, dev, s);
-    if (!o->csv.empty()) write_accuracy_csv(rows, o->csv, device);
-    if (!o->plot.empty())
-      write_accuracy_plot(
-          rows, o->plot,
-          "Error vs kernel time, " + std::to_string(s.width) + "x" + std::to_string(s.height) + ", " + device);
-    if (o->json) {
-      std::printf("%s\n", accuracy_json(rows, s, device).c_str());
-      return;
-    }
-    std::printf("device %s, %dx%d, %dx%d samples per pixel, kernel time = median of %d runs after a warm-up\n",
-                device.c_str(), s.width, s.height, s.spp, s.spp, s.repeat);
-    std::printf("%s", o->markdown ? accuracy_markdown(rows).c_str() : accuracy_table(rows).c_str());
+    report_accuracy(measure_accuracy(scenes, dev, s), *o, s, dev.name, nullptr);
   });
 }
 

@@ -4,6 +4,9 @@
 
 #include "app/options.hpp"
 #include "app/sweep_report.hpp"
+#include "dist/communicator.hpp"
+#include "dist/eval_grids.hpp"
+#include "dist/job.hpp"
 #include "eval/sweep.hpp"
 #include "image/image_file.hpp"
 #include "image/plot.hpp"
@@ -14,6 +17,78 @@
 #include "util/progress.hpp"
 
 namespace clrt {
+
+namespace {
+
+// What a sweep reports, in one process or across ranks.
+struct SweepOutputs {
+  std::string csv, plot;
+  bool json = false;
+};
+
+void report_sweep(const std::vector<SweepRow>& rows, const std::string& scene_path, const SweepOutputs& out,
+                  const dist::GridStats* grid) {
+  const int ranks = grid ? int(grid->ranks.size()) : 1;
+  if (!out.json) {
+    if (grid)
+      std::printf(
+          "%d MPI ranks: each (depth, device) timed on the rank that ran it; ranks on one machine contend "
+          "for its cores, so the times are not comparable with a one-process sweep\n",
+          ranks);
+    print_sweep(rows);
+  }
+  // With --json, standard output holds the JSON object alone.
+  if (!out.csv.empty()) {
+    write_text_atomic(out.csv, sweep_csv(rows), "CSV");
+    if (!out.json) std::printf("wrote %s\n", out.csv.c_str());
+  }
+  if (!out.plot.empty()) {
+    std::string second = plot_sweep(rows, out.plot, scene_path);
+    if (!out.json) std::printf("wrote %s and %s\n", out.plot.c_str(), second.c_str());
+  }
+  if (out.json) std::printf("%s\n", json_text(sweep_json(rows, scene_path, ranks)).c_str());
+  if (grid && !out.json) std::printf("%s", dist::grid_share_lines(*grid).c_str());
+}
+
+// Outputs checked before measuring (both plots).
+void check_sweep_outputs(const SweepOutputs& out) {
+  if (!out.plot.empty()) {
+    check_plot_output(out.plot);
+    check_plot_output(rays_plot_path(out.plot));
+  }
+  if (!out.csv.empty()) check_writable(out.csv, "CSV");
+}
+
+// `clrt sweep` launched by mpirun with several ranks: rank 0 checks the
+// options and outputs, reads the scene and selects the devices; every rank
+// gets them (no shared file system is assumed) and measures the cells rank
+// 0 hands it (dist/eval_grids.hpp); rank 0 reports.
+void sweep_across_ranks(const RenderOptions& o, const std::string& depths, const std::string& devices,
+                        const SweepSettings& base, const SweepOutputs& out) {
+  dist::Communicator& comm = dist::world();
+  const std::string spec = devices.empty() ? o.device.device : devices;
+  std::vector<DeviceInfo> devs;
+  const dist::Bytes bytes = dist::share_from_root(comm, [&] {
+    o.validate();
+    dist::SweepInput in;
+    parse_depth_range(depths, in.depth_from, in.depth_to);
+    check_sweep_outputs(out);  // fail before any rank measures
+    in.scene = o.image.load_scene(o.scene_path);
+    devs = select_devices(spec);
+    for (const auto& d : devs) in.devices.push_back(dist::device_label(d));
+    return dist::encode_sweep_input(in);
+  });
+  const dist::SweepInput in = dist::decode_sweep_input(bytes);
+  SweepSettings s = base;
+  s.depth_from = in.depth_from, s.depth_to = in.depth_to;
+  // Rank 0's devices are those it selected; the others select their own.
+  const auto local = [&] { return comm.rank() == 0 ? devs : select_devices(spec); };
+  dist::GridStats stats;
+  auto rows = dist::sweep_across_ranks(comm, in, local, o.settings(), s, &stats);
+  if (comm.rank() == 0) report_sweep(rows, o.scene_path, out, &stats);
+}
+
+}  // namespace
 
 void add_sweep_command(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
@@ -36,15 +111,8 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_flag("--omp", *omp, "Also time the OpenMP float tracer at each depth");
   cmd->add_flag("--json", *as_json, "Print one JSON object instead of the table");
   cmd->callback([o, depths, devices, csv, plot, repeat, omp, as_json] {
-    o->validate();
+    const SweepOutputs out{*csv, *plot, *as_json};
     SweepSettings s;
-    parse_depth_range(*depths, s.depth_from, s.depth_to);
-    if (!plot->empty()) {  // both plots, before measuring
-      check_plot_output(*plot);
-      check_plot_output(rays_plot_path(*plot));
-    }
-    if (!csv->empty()) check_writable(*csv, "CSV");  // fail before measuring
-    Scene scene = o->image.load_scene(o->scene_path);
     s.bench.width = o->image.width;
     s.bench.height = o->image.height;
     s.bench.spp = o->image.spp;
@@ -55,19 +123,13 @@ void add_sweep_command(CLI::App& app) {
     s.bench.embree = false;  // (bench's comparison; the sweep reports OpenMP only)
     s.bench.builds = false;
     s.progress = stderr_progress();  // on a terminal only, not with --quiet
+    if (dist::world().distributed()) return sweep_across_ranks(*o, *depths, *devices, s, out);
+    o->validate();
+    parse_depth_range(*depths, s.depth_from, s.depth_to);
+    check_sweep_outputs(out);  // fail before measuring
+    Scene scene = o->image.load_scene(o->scene_path);
     auto devs = select_devices(devices->empty() ? o->device.device : *devices);
-    auto rows = run_sweep(scene, devs, o->settings(), s);
-    if (!*as_json) print_sweep(rows);
-    // With --json, standard output holds the JSON object alone.
-    if (!csv->empty()) {
-      write_text_atomic(*csv, sweep_csv(rows), "CSV");
-      if (!*as_json) std::printf("wrote %s\n", csv->c_str());
-    }
-    if (!plot->empty()) {
-      std::string second = plot_sweep(rows, *plot, o->scene_path);
-      if (!*as_json) std::printf("wrote %s and %s\n", plot->c_str(), second.c_str());
-    }
-    if (*as_json) std::printf("%s\n", json_text(sweep_json(rows, o->scene_path)).c_str());
+    report_sweep(run_sweep(scene, devs, o->settings(), s), o->scene_path, out, nullptr);
   });
 }
 

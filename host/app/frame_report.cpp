@@ -18,6 +18,15 @@ void print_shares(const std::vector<DeviceShare>& shares, std::FILE* to) {
   }
 }
 
+void print_rank_shares(const std::vector<dist::RankShare>& shares, const char* unit, std::FILE* to) {
+  long long total = 0;
+  for (const auto& s : shares) total += s.rows;
+  for (const auto& s : shares)
+    std::fprintf(to, "  rank %d %-16.16s %-40.40s %4d %s, %6lld rows (%5.1f%%), kernel %9.2f ms, busy %9.2f ms\n",
+                 s.rank, s.host.c_str(), s.devices.c_str(), s.units, unit, s.rows, total ? 100.0 * s.rows / total : 0.0,
+                 s.kernel_ms, s.busy_ms);
+}
+
 nlohmann::json shares_json(const std::vector<DeviceShare>& shares) {
   nlohmann::json a = nlohmann::json::array();
   for (const auto& d : shares)

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "dist/frame_farm.hpp"
 #include "render/band_scheduler.hpp"
 
 namespace clrt {
@@ -12,5 +13,8 @@ namespace clrt {
 // time, longest launch.
 void print_shares(const std::vector<DeviceShare>& shares, std::FILE* to = stdout);
 nlohmann::json shares_json(const std::vector<DeviceShare>& shares);
+// One line per rank of an MPI job: its host and devices, what it rendered
+// (`unit`: "tiles", "frames", ...) and its share of the rows, busy time.
+void print_rank_shares(const std::vector<dist::RankShare>& shares, const char* unit, std::FILE* to = stdout);
 
 }  // namespace clrt

@@ -4,11 +4,14 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "app/options.hpp"
 #include "cl/cl.hpp"
+#include "dist/communicator.hpp"
+#include "dist/job.hpp"
 #include "util/edit_distance.hpp"
 #include "util/error.hpp"
 #include "util/log.hpp"
@@ -27,11 +30,51 @@
 namespace {
 
 // Every error is one line on stderr, whatever a library put in its message.
-void report(std::string msg, const char* what = "error") {
+// In an MPI job, rank 0 prints the job's errors: every rank parses the same
+// command line (a `symmetric` error: the others stay silent), and a rank's
+// failure in its share of the work travels to rank 0. Another rank prints
+// only an error of its own outside that (`symmetric` false), with its rank.
+void report(std::string msg, const char* what = "error", bool symmetric = true) {
+  const clrt::dist::Communicator& world = clrt::dist::world();
+  if (world.rank() != 0 && symmetric) return;
   for (auto& c : msg)
     if (c == '\n' || c == '\r') c = ' ';
+  if (world.rank() != 0) msg = clrt::dist::rank_label(world.rank(), world.host()) + ": " + msg;
   clrt::clear_progress_line();
   std::cerr << "clrt: " << what << ": " << msg << "\n";
+}
+
+// The exit status of a rank other than 0 after an error rank 0 reports: 0,
+// so that the job's status is rank 0's and mpirun does not end rank 0 (with
+// SIGTERM, as it does when a rank exits with another status) before rank 0
+// has printed the error and removed its temp files.
+int status_of_symmetric(int status) {
+  return clrt::dist::world().rank() != 0 || clrt::dist::environment_rank() != 0 ? clrt::kExitOk : status;
+}
+
+// The subcommands that spread their work over the ranks of an MPI job; the
+// others refuse to run with more than one rank (each rank would do all of it).
+bool runs_across_ranks(const std::string& command) {
+  return command == "render" || command == "sweep" || command == "accuracy";
+}
+
+// An MPI job's checks before the command line is read: a clrt built without
+// MPI refuses an mpirun launch (each process would render the whole job and
+// write the same files); a subcommand that does not distribute refuses more
+// than one rank.
+void check_launch(int argc, char** argv) {
+  namespace dist = clrt::dist;
+  if (dist::launched_by_mpi() && !dist::built_with_mpi())
+    throw clrt::UserError("launched by mpirun, but this clrt was built without MPI (configure with -DCLRT_MPI=ON)");
+  if (!dist::world().distributed()) return;
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') continue;
+    if (!runs_across_ranks(word))
+      throw clrt::UserError("'" + word + "' does not run across MPI ranks (" + std::to_string(dist::world().size()) +
+                            " here): run it without mpirun; render, sweep and accuracy do");
+    return;
+  }
 }
 
 std::string command_list(const CLI::App& app) {
@@ -118,7 +161,22 @@ int main(int argc, char** argv) {
     clrt::write_log_to_stderr(level, message);
   });
   clrt::install_signal_cleanup();
+  // MPI, when launched by mpirun (dist/communicator.hpp); finalized when
+  // main returns.
+  std::unique_ptr<clrt::dist::Session> mpi;
   try {
+    mpi = std::make_unique<clrt::dist::Session>(argc, argv);
+  } catch (const std::exception& e) {
+    if (clrt::dist::environment_rank() == 0) std::cerr << "clrt: error: " << e.what() << "\n";
+    return clrt::kExitBadInput;
+  }
+  if (clrt::dist::world().distributed())
+    clrt::set_signal_report(clrt::dist::world().rank() == 0,
+                            " (mpirun ends every rank when one fails or the job is cancelled)");
+  try {
+    if (clrt::dist::launched_by_mpi() && !clrt::dist::built_with_mpi() && clrt::dist::environment_rank() != 0)
+      return clrt::kExitOk;  // rank 0 says why (check_launch) and fails the job
+    check_launch(argc, argv);
     check_command_names(app, argc, argv);
     app.parse(argc, argv);
     // Results printed to stdout (tables, JSON) must have reached it: a full
@@ -126,28 +184,30 @@ int main(int argc, char** argv) {
     if (std::fflush(stdout) != 0 || std::ferror(stdout))
       throw clrt::UserError(std::string("cannot write standard output: ") + std::strerror(errno));
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return clrt::dist::world().rank() == 0 ? app.exit(e) : clrt::kExitOk;  // (one copy of the help)
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return clrt::dist::world().rank() == 0 ? app.exit(e) : clrt::kExitOk;
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return clrt::dist::world().rank() == 0 ? app.exit(e) : clrt::kExitOk;
+  } catch (const clrt::dist::JobAborted&) {
+    return clrt::kExitOk;  // stopped by rank 0, which prints the error and fails the job
   } catch (const CLI::ParseError& e) {
     report(e.what());
-    return clrt::kExitBadInput;
+    return status_of_symmetric(clrt::kExitBadInput);
   } catch (const clrt::CheckFailure& e) {
     report(e.what(), "check failed");
-    return clrt::kExitCheckFailed;
+    return status_of_symmetric(clrt::kExitCheckFailed);
   } catch (const clrt::UserError& e) {
     report(e.what());
-    return clrt::kExitBadInput;
+    return status_of_symmetric(clrt::kExitBadInput);
   } catch (const clrt::DeviceError& e) {
-    report(e.what());
+    report(e.what(), "error", /*symmetric=*/false);
     return clrt::kExitBadInput;
   } catch (const cl::Error& e) {
-    report(clrt::describe(e));
+    report(clrt::describe(e), "error", false);
     return clrt::kExitBadInput;
   } catch (const std::exception& e) {
-    report(e.what(), "internal error");
+    report(e.what(), "internal error", false);
     return clrt::kExitInternalError;
   }
   return clrt::kExitOk;

@@ -190,8 +190,13 @@ void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help) {
   cmd->add_option("--repeat", repeat, help)->check(CLI::Range(1, kMaxRepeat))->capture_default_str();
 }
 
-void RenderOptions::add(CLI::App* cmd, bool with_engine) {
-  cmd->add_option("scene", scene_path, "Scene file (JSON)")->required();
+void RenderOptions::add(CLI::App* cmd, bool with_engine, bool several_scenes) {
+  if (several_scenes)
+    cmd->add_option("scene", scene_paths,
+                    "Scene file(s) (JSON); several: one frame each, written to OUT's pattern (frame_####.png)")
+        ->required();
+  else
+    cmd->add_option("scene", scene_path, "Scene file (JSON)")->required();
   image.add(cmd);
   if (with_engine) cmd->add_option("--engine", engine, "opencl or reference")->capture_default_str();
   device.add(cmd, /*several=*/true);

@@ -98,14 +98,18 @@ void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help);
 // Everything a render-like subcommand (render, compare, bench, sweep) takes.
 struct RenderOptions {
   std::string scene_path;
+  // With several_scenes (render): every SCENE given, in order (scene_path is
+  // then the frame's, set by the command).
+  std::vector<std::string> scene_paths;
   std::string engine = "opencl";
   ImageOptions image;
   DeviceOptions device;
   KernelOptions kernel;
   LaunchOptions launch;
 
-  // Adds SCENE and every group (--engine only with_engine).
-  void add(CLI::App* cmd, bool with_engine);
+  // Adds SCENE (SCENE... into scene_paths with several_scenes) and every
+  // group (--engine only with_engine).
+  void add(CLI::App* cmd, bool with_engine, bool several_scenes = false);
   void validate() const;
   RenderSettings settings() const { return RenderSettings{kernel.config(), launch.tiles(), launch.local()}; }
 };

@@ -196,20 +196,32 @@ bool cache_begin_load(const ProgramCacheKey& key, std::string* note) {
   std::error_code ec;
   if (fs::exists(path + ".bad", ec)) return false;
   const std::string marker = path + ".loading";
-  int fd = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
-  if (fd >= 0) {
-    const std::string pid = std::to_string(::getpid()) + "\n";
-    const bool written = ::write(fd, pid.data(), pid.size()) == ssize_t(pid.size());
-    ::close(fd);
-    if (!written) ::unlink(marker.c_str());
-    return written;
+  // The marker appears with its pid already in it (written to a private
+  // name, then linked: link() fails with EEXIST like O_EXCL), so a process
+  // that finds it never reads it empty - ranks of an MPI job on one machine
+  // load the same entry at the same moment.
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  const std::string own = marker + "." + std::to_string(::getpid());
+  const int flags = O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW;
+  int fd = ::open(own.c_str(), flags, 0644);
+  if (fd < 0 && errno == EEXIST) {  // left by a killed process whose pid this one reuses
+    ::unlink(own.c_str());
+    fd = ::open(own.c_str(), flags, 0644);
   }
-  if (errno != EEXIST) return false;  // cannot mark: do not load unguarded
+  if (fd < 0) return false;  // cannot mark: do not load unguarded
+  const bool written = ::write(fd, pid.data(), pid.size()) == ssize_t(pid.size());
+  ::close(fd);
+  const int linked = written ? ::link(own.c_str(), marker.c_str()) : -1;
+  const int link_errno = errno;
+  ::unlink(own.c_str());
+  if (linked == 0) return true;
+  if (!written || link_errno != EEXIST) return false;
   long other = 0;
   {
     std::ifstream in(marker);
     in >> other;
   }
+  if (other <= 0) return false;            // unreadable (a marker of an older clrt being written): build from source
   if (process_alive(other)) return false;  // being loaded right now: build from source
   // The process that loaded this entry last did not finish: it crashed in
   // the driver. Never load this entry again.

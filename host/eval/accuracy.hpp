@@ -67,4 +67,21 @@ struct NamedScene {
 std::vector<AccuracyRow> measure_accuracy(const std::vector<NamedScene>& scenes, const DeviceInfo& device,
                                           const AccuracySettings& s);
 
+// The pieces of measure_accuracy, which an accuracy run spread over the
+// ranks of an MPI job (dist/eval_grids.hpp) runs on different ranks.
+// The depth a scene is rendered at (--depth, else its recursion_depth).
+int accuracy_depth(const Scene& scene, const AccuracySettings& s);
+// The double reference of a scene.
+Image accuracy_reference(const Scene& scene, const AccuracySettings& s);
+// A row's scene, variant and depth, and whether `device` runs the variant
+// (supported, note); nothing measured.
+AccuracyRow accuracy_row(const NamedScene& scene, const AccuracyVariant& v, const DeviceInfo& device,
+                         const AccuracySettings& s);
+// One variant alone: its row with the `repeat` timed runs (back to back, not
+// interleaved with other variants) and, when supported, its warm-up image in
+// `image` (for the error, which is left to the caller: compare_images(image,
+// reference)).
+AccuracyRow measure_accuracy_variant(const NamedScene& scene, const AccuracyVariant& v, const DeviceInfo& device,
+                                     const AccuracySettings& s, Image& image);
+
 }  // namespace clrt

@@ -10,6 +10,7 @@
 #include "embree_tracer.hpp"
 #include "omp_tracer.hpp"
 #include "reference/reference.hpp"
+#include "util/build_features.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -68,10 +69,12 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   // chapters 2-4 only: at spp > 1, with transparent spheres or with planes
   // and triangles their frames
   // would not be the same image, so they are not run (r.tracers_not_run
-  // says why).
+  // says why); a lean build has none.
   const bool transparent = std::any_of(scene.spheres.begin(), scene.spheres.end(),
                                        [](const Sphere& sphere) { return sphere.transparency > 0; });
-  if (s.subsample != Subsample::Off)
+  if (kLeanBuild)
+    r.tracers_not_run = std::string(kLeanBuildNote) + " (no OpenMP/Embree comparison tracers)";
+  else if (s.subsample != Subsample::Off)
     r.tracers_not_run = "they do not subsample (--subsample)";
   else if (s.spp > 1)
     r.tracers_not_run = "they trace one ray per pixel (--spp " + std::to_string(s.spp) + " traces " +

@@ -37,4 +37,22 @@ struct SweepSettings {
 std::vector<SweepRow> run_sweep(const Scene& scene, const std::vector<DeviceInfo>& devices,
                                 const RenderSettings& settings, const SweepSettings& s);
 
+// The pieces of run_sweep, which a sweep spread over the ranks of an MPI job
+// (dist/eval_grids.hpp) runs on different ranks: the reference at a depth,
+// one (depth, device) row, and the comparisons that join them.
+struct SweepReference {
+  Image image;
+  double ms = 0;  // its render time
+};
+SweepReference sweep_reference(const Scene& scene, const SweepSettings& s, int depth);
+// The bench of one row, with its OpenCL image kept in bench.image (for
+// sweep_compare); error, change and the reference's figures left empty.
+SweepRow sweep_row(const Scene& scene, const DeviceInfo& device, const RenderSettings& settings, const SweepSettings& s,
+                   int depth);
+// Fills a row's error and reference figures from the reference at its
+// depth, and its change and kernel_ms_delta from the image and median kernel
+// time of the same device at the depth before (previous = null at the first
+// depth: both stay zero).
+void sweep_compare(SweepRow& row, const SweepReference& ref, const Image* previous, double previous_kernel_ms);
+
 }  // namespace clrt

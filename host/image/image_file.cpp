@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "image/image_io.hpp"
+#include "util/build_features.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 
@@ -44,11 +45,12 @@ std::string lowercase_extension(const std::string& path) {
 namespace {
 
 // The name whose extension picks the encoder: "out.FORMAT" for --format,
-// OUT itself, or "out.png" for standard output and devices named without an
-// extension (/dev/stdout).
+// OUT itself, or "out.png" ("out.ppm" in a lean build) for standard output
+// and devices named without an extension (/dev/stdout).
 std::string format_name(const std::string& path, OutputKind kind, const std::string& format) {
   if (!format.empty()) return "out." + format;
-  return extension_of(path).empty() && kind != OutputKind::File ? std::string("out.png") : path;
+  const char* unnamed = kLeanBuild ? "out.ppm" : "out.png";
+  return extension_of(path).empty() && kind != OutputKind::File ? std::string(unnamed) : path;
 }
 
 std::string format_ext(const std::string& path, OutputKind kind, const std::string& format) {
@@ -65,17 +67,24 @@ bool comment_header_ext(const std::string& ext) {
   return ext == "ppm" || ext == "pnm" || ext == "hdr";
 }
 
+// The formats to suggest: a lean build writes PPM and PFM only.
+constexpr const char* kFormatHint = kLeanBuild ? "use .ppm or .pfm" : "use .png, .ppm, .exr, .pfm, ...";
+
 [[noreturn]] void unknown_format(const std::string& path, const std::string& ext) {
-  throw UserError(path + ": unknown image format \"." + ext + "\" (use .png, .ppm, .exr, .pfm, ...)");
+  if (kLeanBuild)
+    throw UserError(path + ": unknown image format \"." + ext + "\": " + kLeanBuildNote +
+                    ", without OpenImageIO (no PNG, EXR, ...); write .ppm or .pfm");
+  throw UserError(path + ": unknown image format \"." + ext + "\" (" + kFormatHint + ")");
 }
 
 // UserError unless there is an encoder for OUT (of this kind). The formats
 // of written_without_asking() are known without loading the imaging module
 // (only its file must be there), PFM is clrt's own; any other extension is
-// asked of OpenImageIO, which loads it.
+// asked of OpenImageIO, which loads it. (A lean build's module is built in:
+// it writes PPM only.)
 void check_image_format(const std::string& path, OutputKind kind, const std::string& format) {
   if (format.empty() && extension_of(path).empty() && kind == OutputKind::File)
-    throw UserError(path + ": output has no file extension (use .png, .ppm, .exr, .pfm, ... or --format)");
+    throw UserError(path + ": output has no file extension (" + kFormatHint + " or --format)");
   const std::string name = format_name(path, kind, format);
   const std::string ext = lowercase_extension(name);
   if (ext == "pfm") return;
@@ -189,8 +198,10 @@ ImageMetadata header_comments(const std::string& path) {
 }  // namespace
 
 const std::vector<std::string>& written_without_asking() {
-  static const std::vector<std::string> known{"png",  "ppm", "pnm",  "exr", "hdr", "jpg",
-                                              "jpeg", "tif", "tiff", "bmp", "tga"};
+  static const std::vector<std::string> known =
+      kLeanBuild
+          ? std::vector<std::string>{"ppm"}
+          : std::vector<std::string>{"png", "ppm", "pnm", "exr", "hdr", "jpg", "jpeg", "tif", "tiff", "bmp", "tga"};
   return known;
 }
 

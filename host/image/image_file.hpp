@@ -27,7 +27,9 @@ constexpr double kFloatWhite = 1.0;
 
 // `format` below: an extension ("png", "exr", "pfm", ...) that picks the
 // encoder instead of OUT's own (render --format); "" = OUT's extension, or
-// PNG for standard output and devices named without one.
+// PNG for standard output and devices named without one (PPM in a lean
+// build, CLRT_LEAN=ON, which writes and reads PPM and PFM only: its imaging
+// module is image_io_builtin.cpp, and any other format is a UserError).
 
 // Checks, before rendering, that OUT can be written: a non-empty path whose
 // extension (or `format`) clrt can write, in an existing directory that

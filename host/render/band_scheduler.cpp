@@ -7,6 +7,7 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 #include "cl/launch_timing.hpp"
@@ -21,7 +22,7 @@ double launch_limit_ms(const TilePolicy& policy, const std::string& device_type)
 
 bool BandQueue::take(int want, bool guided, int& y0, int& rows) {
   std::lock_guard<std::mutex> lock(mutex_);
-  int left = height_ - next_;
+  int left = end_ - next_;
   if (left <= 0) return false;
   int n = std::min(want, left);
   if (guided && workers_ > 1) n = std::min(n, std::max(1, (left + 2 * workers_ - 1) / (2 * workers_)));
@@ -47,8 +48,8 @@ struct RowProgress {
 };
 
 void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolicy& policy, int n_workers,
-                DeviceShare& share, RowProgress& progress) {
-  const int W = img.width, H = img.height;
+                DeviceShare& share, RowProgress& progress, int range_rows) {
+  const int W = img.width, H = range_rows;
   const double limit = launch_limit_ms(policy, r.device().type);
   // Largest band the device can hold (float RGB output is the largest buffer).
   const long long alloc_rows = std::max<long long>(1, (long long)(r.device().max_alloc / (3 * sizeof(float))) / W);
@@ -104,13 +105,16 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
 }  // namespace
 
 std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img, const TilePolicy& policy,
-                                      const ProgressFn& progress) {
-  RowProgress rows(progress, img.height);
+                                      const ProgressFn& progress, int y_begin, int y_end) {
+  if (y_end < 0) y_end = img.height;
+  if (y_begin < 0 || y_begin > y_end || y_end > img.height) throw std::logic_error("render_bands: rows out of range");
+  const int range_rows = y_end - y_begin;
+  RowProgress rows(progress, range_rows);
   std::vector<DeviceShare> shares(workers.size());
   for (size_t i = 0; i < workers.size(); ++i) shares[i].device = workers[i]->device().name;
-  BandQueue queue(img.height, int(workers.size()));
+  BandQueue queue(y_begin, y_end, int(workers.size()));
   if (workers.size() == 1) {
-    run_worker(*workers[0], queue, img, policy, 1, shares[0], rows);
+    run_worker(*workers[0], queue, img, policy, 1, shares[0], rows, range_rows);
     return shares;
   }
   // One host thread per device: each owns its context, queue and program, and
@@ -120,7 +124,7 @@ std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& worker
   for (size_t i = 0; i < workers.size(); ++i) {
     threads.emplace_back([&, i] {
       try {
-        run_worker(*workers[i], queue, img, policy, int(workers.size()), shares[i], rows);
+        run_worker(*workers[i], queue, img, policy, int(workers.size()), shares[i], rows, range_rows);
       } catch (...) {
         errors[i] = std::current_exception();
       }

@@ -37,7 +37,8 @@ struct DeviceShare {
 // The rows of a frame, taken band by band by several threads.
 class BandQueue {
  public:
-  BandQueue(int height, int workers) : height_(height), workers_(workers) {}
+  // Rows [begin, end) of a frame.
+  BandQueue(int begin, int end, int workers) : end_(end), workers_(workers), next_(begin) {}
 
   // Takes up to `want` rows; when `guided` and there are several workers, at
   // most half of an even share of what is left (guided scheduling), so the
@@ -47,15 +48,16 @@ class BandQueue {
 
  private:
   std::mutex mutex_;
-  int height_, workers_, next_ = 0;
+  int end_, workers_, next_;
 };
 
-// Renders the whole frame of every worker's prepared scene into `img` (all
-// workers must have been prepared with the same scene and size). Returns one
-// share per worker, in order. Exceptions from any worker are rethrown.
-// `progress` (optional): rows done of img.height, after each band.
+// Renders rows [y_begin, y_end) of every worker's prepared scene into `img`
+// (all workers must have been prepared with the same scene and size; y_end
+// < 0: to the last row). Returns one share per worker, in order. Exceptions
+// from any worker are rethrown. `progress` (optional): rows done of the
+// range, after each band.
 std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img, const TilePolicy& policy,
-                                      const ProgressFn& progress = {});
+                                      const ProgressFn& progress = {}, int y_begin = 0, int y_end = -1);
 
 // The effective launch limit of `policy` for a device of this type string.
 double launch_limit_ms(const TilePolicy& policy, const std::string& device_type);

@@ -84,7 +84,19 @@ Image Renderer::render() {
   return img;
 }
 
+int Renderer::width() const {
+  return devices_.front()->width();
+}
+
+int Renderer::height() const {
+  return devices_.front()->height();
+}
+
 void Renderer::render_into(Image& img) {
+  render_rows(img, 0, height());
+}
+
+void Renderer::render_rows(Image& img, int y_begin, int y_end) {
   const auto t0 = Clock::now();
   std::vector<DeviceRenderer*> workers;
   for (auto& d : devices_) {
@@ -96,7 +108,7 @@ void Renderer::render_into(Image& img) {
   // every pixel, so a reused image needs no clearing.
   const int width = devices_.front()->width(), height = devices_.front()->height();
   if (!img.holds(width, height, settings_.kernel.output)) img = Image(width, height, settings_.kernel.output);
-  stats_.shares = render_bands(workers, img, settings_.tiles, settings_.progress);
+  stats_.shares = render_bands(workers, img, settings_.tiles, settings_.progress, y_begin, y_end);
   stats_.wall_ms = ms_since(t0);
   stats_.kernel_ms = stats_.download_ms = 0;
   stats_.launches = stats_.host_timed_launches = 0;

@@ -66,6 +66,14 @@ class Renderer {
   // The same into `out`, whose memory is reused when it has the frame's size
   // (frame after frame: no new pages for the image).
   void render_into(Image& out);
+  // Rows [y_begin, y_end) of the frame only, into `out` (a full-size image
+  // of the frame's contents, allocated when it is not one; other rows are
+  // left as they are): a tile of a frame shared by several processes
+  // (dist/frame_farm.hpp). The stats describe these rows.
+  void render_rows(Image& out, int y_begin, int y_end);
+  // The frame's size, as prepared.
+  int width() const;
+  int height() const;
 
   const FrameStats& stats() const { return stats_; }
   // "name" or "name + name + ...".

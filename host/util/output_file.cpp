@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -42,13 +43,19 @@ void unregister_temp() {
   unregister_path(0);
 }
 
+// set_signal_report(): whether this process prints the line, and what it adds.
+std::atomic<bool> g_signal_prints{true};
+char g_signal_note[256] = "";
+
 void on_signal(int sig) {
   if (g_set[0].load()) ::unlink(g_paths[0]);
   if (g_set[2].load()) ::unlink(g_paths[2]);
   if (g_set[1].load()) ::rmdir(g_paths[1]);
+  if (!g_signal_prints.load()) ::_exit(128 + sig);
   const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : sig == SIGHUP ? "SIGHUP" : "SIGPIPE";
-  char line[64] = "clrt: error: interrupted by ";
+  char line[384] = "clrt: error: interrupted by ";
   std::strcat(line, name);
+  std::strcat(line, g_signal_note);
   std::strcat(line, "\n");
   ssize_t ignored = ::write(STDERR_FILENO, line, std::strlen(line));
   (void)ignored;
@@ -135,6 +142,13 @@ std::string ScratchFile::read() const {
   }
   ::close(fd);
   return out;
+}
+
+void set_signal_report(bool print, const std::string& note) {
+  g_signal_prints.store(print);
+  const size_t n = std::min(note.size(), sizeof g_signal_note - 1);
+  std::memcpy(g_signal_note, note.data(), n);
+  g_signal_note[n] = '\0';
 }
 
 void install_signal_cleanup() {

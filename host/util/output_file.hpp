@@ -76,5 +76,9 @@ class ScratchFile {
 // 128 + the signal number (130 for SIGINT, 143 for SIGTERM). Called once by
 // main().
 void install_signal_cleanup();
+// What that line says: `note` is appended to it (e.g. why mpirun ended the
+// job); print = false: no line (the other ranks of an MPI job, whose rank 0
+// prints it), the same cleanup and exit status.
+void set_signal_report(bool print, const std::string& note);
 
 }  // namespace clrt

@@ -84,7 +84,7 @@ TEST_CASE("a bare clrt prints the usage and one error line", "[cli]") {
 
 TEST_CASE("a mistyped subcommand: one error line with a suggestion", "[cli]") {
   TempDir dir;
-  const std::string out = dir / "out.png";
+  const std::string out = dir / clrt_test::image_name("out");
   const RunResult r = run_clrt({"rendr", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", out});
   check_one_error(r, "unknown command 'rendr'; did you mean 'render'?");
   CHECK(r.out.empty());
@@ -147,12 +147,12 @@ TEST_CASE("devices: platform:device numbers, driver, memory and the default", "[
   // What `devices` lists, --device takes: 0:0 is the first platform's first device.
   TempDir dir;
   const RunResult render = run_clrt({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "--device", "0:0",
-                                     "--width", "8", "--height", "8", "-o", dir / "out.png"});
+                                     "--width", "8", "--height", "8", "-o", dir / clrt_test::image_name("out")});
   INFO("render stderr: " << render.err);
   CHECK(render.status == 0);
-  check_one_error(
-      run_clrt({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "--device", "9:9", "-o", dir / "x.png"}),
-      "unknown device \"9:9\"");
+  check_one_error(run_clrt({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "--device", "9:9", "-o",
+                            dir / clrt_test::image_name("x")}),
+                  "unknown device \"9:9\"");
 }
 
 TEST_CASE("cache info and cache clear", "[cli][cache]") {

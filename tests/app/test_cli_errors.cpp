@@ -39,7 +39,7 @@ void check_error(const RunResult& r, std::initializer_list<std::string> needles)
 void check_bad_scene(const std::string& scene_text, const std::string& problem) {
   TempDir dir;
   std::string scene = dir.write("bad.json", scene_text);
-  std::string out = dir / "out.png";
+  std::string out = dir / clrt_test::image_name("out");
   check_error(run_clrt({"render", scene, "-o", out, "--width", "16", "--height", "16"}), {scene + ": ", problem});
   CHECK_FALSE(fs::exists(out));
   CHECK(dir.entries() == std::vector<std::string>{"bad.json"});
@@ -108,7 +108,7 @@ TEST_CASE("bad scene files: message names the file and the problem, no output", 
 
 TEST_CASE("missing or unreadable scene file", "[cli]") {
   TempDir dir;
-  std::string out = dir / "out.png";
+  std::string out = dir / clrt_test::image_name("out");
   std::string missing = dir / "missing.json";
   check_error(run_clrt({"render", missing, "-o", out}), {missing + ": cannot open scene file: No such file"});
   check_error(run_clrt({"render", dir.path().string(), "-o", out}),
@@ -119,7 +119,7 @@ TEST_CASE("missing or unreadable scene file", "[cli]") {
 
 TEST_CASE("bad image size and depth options", "[cli]") {
   TempDir dir;
-  std::string out = dir / "out.png";
+  std::string out = dir / clrt_test::image_name("out");
   check_bad_render({"--width", "0"}, out, {"--width/--height must be > 0 (got 0x600)"});
   check_bad_render({"--height", "-5"}, out, {"--width/--height must be > 0 (got 600x-5)"});
   check_bad_render({"--width", "100000"}, out, {"image 100000x600 is too large"});
@@ -133,7 +133,7 @@ TEST_CASE("bad image size and depth options", "[cli]") {
 
 TEST_CASE("bad --spp: one error line, exit 2, on every command that renders", "[cli][spp]") {
   TempDir dir;
-  const std::string out = dir / "out.png";
+  const std::string out = dir / clrt_test::image_name("out");
   const std::string demo = clrt_test::source_path("scenes/cgfs-demo.json");
   check_bad_render({"--spp", "0"}, out, {"--spp: Value 0 not in range 1 to 16"});
   check_bad_render({"--spp", "17"}, out, {"--spp: Value 17 not in range 1 to 16"});
@@ -166,21 +166,22 @@ TEST_CASE("compare at spp 2 on the command line: reference and OpenCL agree", "[
 TEST_CASE("bad output paths fail before rendering", "[cli]") {
   TempDir dir;
   SECTION("directory does not exist") {
-    std::string out = dir / "nodir/out.png";
+    std::string out = dir / clrt_test::image_name("nodir/out");
     check_bad_render({}, out, {out + ": cannot write output: directory " + (dir / "nodir") + " does not exist"});
     CHECK(dir.entries().empty());
   }
   SECTION("output is a directory") {
-    std::string out = dir / "out.png";
+    std::string out = dir / clrt_test::image_name("out");
     fs::create_directory(out);
     check_bad_render({}, out, {out + ": cannot write output: it is a directory"});
     CHECK(fs::is_empty(out));
   }
   SECTION("unwritable location") {
     // /proc refuses new files even for root (CI runs as root).
-    check_bad_render({}, "/proc/clrt-test-out.png",
-                     {"/proc/clrt-test-out.png: cannot write output: cannot create a file in /proc"});
-    CHECK_FALSE(fs::exists("/proc/clrt-test-out.png"));
+    check_bad_render(
+        {}, clrt_test::image_name("/proc/clrt-test-out"),
+        {clrt_test::image_name("/proc/clrt-test-out") + ": cannot write output: cannot create a file in /proc"});
+    CHECK_FALSE(fs::exists(clrt_test::image_name("/proc/clrt-test-out")));
   }
   SECTION("unknown image extension") {
     std::string out = dir / "out.xyz";
@@ -203,13 +204,13 @@ TEST_CASE("bad output paths fail before rendering", "[cli]") {
 
 TEST_CASE("a successful render leaves only its output", "[cli]") {
   TempDir dir;
-  std::string out = dir / "out.png";
+  std::string out = dir / clrt_test::image_name("out");
   RunResult r = run_clrt({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", out, "--width", "16",
                           "--height", "16", "--engine", "reference"});
   INFO("stderr: " << r.err);
   CHECK(r.status == 0);
   CHECK(r.err.empty());
-  CHECK(dir.entries() == std::vector<std::string>{"out.png"});
+  CHECK(dir.entries() == std::vector<std::string>{clrt_test::image_name("out")});
 }
 
 TEST_CASE("no OpenCL platform: clear error, and the reference engine still works", "[cli]") {
@@ -217,7 +218,7 @@ TEST_CASE("no OpenCL platform: clear error, and the reference engine still works
   fs::create_directory(dir / "vendors");  // ocl-icd reads ICDs from here: none
   const std::string env = "OCL_ICD_VENDORS=" + clrt_test::shell_quote(dir / "vendors");
   const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json");
-  const std::string out = dir / "out.png";
+  const std::string out = dir / clrt_test::image_name("out");
   const std::vector<std::string> small = {"--width", "16", "--height", "16"};
   std::vector<std::string> args = {"render", scene, "-o", out};
   args.insert(args.end(), small.begin(), small.end());
@@ -235,7 +236,7 @@ TEST_CASE("no OpenCL platform: clear error, and the reference engine still works
 
 TEST_CASE("unknown device", "[cli][opencl]") {
   TempDir dir;
-  std::string out = dir / "out.png";
+  std::string out = dir / clrt_test::image_name("out");
   check_bad_render({"--device", "no-such-device", "--width", "16", "--height", "16"}, out,
                    {"unknown device \"no-such-device\" (available: 0: "});
   CHECK_FALSE(fs::exists(out));
@@ -245,7 +246,7 @@ TEST_CASE("kernel build failure prints the build log, then one error line", "[cl
   TempDir dir;
   fs::copy(clrt_test::source_path("kernels"), dir / "kernels", fs::copy_options::recursive);
   std::ofstream(dir / "kernels/trace.cl", std::ios::app) << "\nthis is not OpenCL C;\n";
-  std::string out = dir / "out.png";
+  std::string out = dir / clrt_test::image_name("out");
   RunResult r = run_clrt({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", out, "--width", "16",
                           "--height", "16", "--kernel-dir", dir / "kernels"});
   INFO("stderr: " << r.err);

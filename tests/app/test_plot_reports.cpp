@@ -96,7 +96,7 @@ TEST_CASE("sweep plot: two devices of one name are two series; error per depth p
   CHECK(rays[0].series.size() == 2);
 }
 
-TEST_CASE("a --plot with an unknown extension fails before measuring", "[plot][cli]") {
+TEST_CASE("a --plot with an unknown extension fails before measuring", "[plot][cli][full-build]") {
   clrt_test::TempDir dir;
   const std::string demo = clrt_test::source_path("scenes/cgfs-demo.json");
   for (const std::vector<std::string>& args :

@@ -249,11 +249,11 @@ TEST_CASE("clrt compare --json: header first, the metric names, null PSNR for id
   clrt_test::TempDir dir;
   const std::string demo = clrt_test::source_path("scenes/cgfs-demo.json");
   // The reference image compared with itself: infinite PSNR.
-  auto render = clrt_test::run_clrt(
-      {"render", demo, "--engine", "reference", "--width", "16", "--height", "12", "--output", dir / "ref.png"});
+  auto render = clrt_test::run_clrt({"render", demo, "--engine", "reference", "--width", "16", "--height", "12",
+                                     "--output", dir / clrt_test::image_name("ref")});
   INFO(render.err);
   REQUIRE(render.status == 0);
-  auto r = clrt_test::run_clrt({"compare", demo, "--image", dir / "ref.png", "--json"});
+  auto r = clrt_test::run_clrt({"compare", demo, "--image", dir / clrt_test::image_name("ref"), "--json"});
   INFO(r.err);
   REQUIRE(r.status == 0);
   check_header_json(r.out, false);

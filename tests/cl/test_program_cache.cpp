@@ -216,3 +216,38 @@ TEST_CASE("storing enforces the limit of CLRT_CACHE_MAX_SIZE", "[cache]") {
   ScopedEnv bad_limit("CLRT_CACHE_MAX_SIZE", "lots");
   CHECK_THROWS_AS(program_cache_limit(/*strict=*/true), UserError);
 }
+
+TEST_CASE("processes loading one entry at the same moment never take each other for a crash", "[cache]") {
+  // The ranks of an MPI job on one machine load the same cached binary at
+  // once. The load marker must hold its pid from the moment it exists: a
+  // process that read it empty took the loader for a crashed one and
+  // discarded a good entry (found with mpirun -np 3).
+  clrt_test::TempDir dir;
+  ScopedEnv env("CLRT_CACHE_DIR", dir.path().c_str());
+  const ProgramCacheKey key{"race", "", "dev", "drv", "plat"};
+  REQUIRE(cache_write_entry(cache_entry_path(key), key.text(), std::vector<unsigned char>(64, 1)));
+  constexpr int kProcesses = 6, kRounds = 300;
+  std::vector<pid_t> children;
+  for (int p = 0; p < kProcesses; ++p) {
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      int crashes = 0;
+      for (int i = 0; i < kRounds; ++i) {
+        std::string note;
+        if (cache_begin_load(key, &note)) cache_end_load(key, true);
+        crashes += !note.empty();
+      }
+      ::_exit(crashes ? 1 : 0);
+    }
+    children.push_back(pid);
+  }
+  for (pid_t pid : children) {
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    CHECK((WIFEXITED(status) && WEXITSTATUS(status) == 0));
+  }
+  CHECK(fs::exists(cache_entry_path(key)));
+  CHECK_FALSE(fs::exists(cache_entry_path(key) + ".bad"));
+  for (const auto& name : dir.entries()) CHECK(name.find(".loading") == std::string::npos);
+}

@@ -82,24 +82,26 @@ TEST_CASE("clrt compare exit codes: 0 within the limits, 1 outside, 2 bad input"
 TEST_CASE("clrt compare --image: a rendered file against the reference", "[cli][compare][opencl]") {
   clrt_test::TempDir dir;
   const std::string demo = source_path("scenes/cgfs-demo.json");
-  REQUIRE(run_clrt({"render", demo, "--width", "64", "--height", "48", "-o", dir / "demo.png"}).status == 0);
+  REQUIRE(
+      run_clrt({"render", demo, "--width", "64", "--height", "48", "-o", dir / clrt_test::image_name("demo")}).status ==
+      0);
   REQUIRE(run_clrt({"render", source_path("scenes/cgfs-camera.json"), "--width", "64", "--height", "48", "-o",
-                    dir / "other.png"})
+                    dir / clrt_test::image_name("other")})
               .status == 0);
   // The image's size is the comparison's size.
-  auto same = run_clrt({"compare", demo, "--image", dir / "demo.png", "--fail-percent", "1"});
+  auto same = run_clrt({"compare", demo, "--image", dir / clrt_test::image_name("demo"), "--fail-percent", "1"});
   INFO(same.err);
   CHECK(same.status == 0);
   CHECK(same.out.find("64x48") != std::string::npos);
   CHECK(same.out.find("flips          n/a") != std::string::npos);
   // Another scene's image fails.
-  auto other = run_clrt({"compare", demo, "--image", dir / "other.png", "--fail-percent", "1"});
+  auto other = run_clrt({"compare", demo, "--image", dir / clrt_test::image_name("other"), "--fail-percent", "1"});
   CHECK(other.status == 1);
   // A missing or non-image file is bad input.
-  auto missing = run_clrt({"compare", demo, "--image", dir / "nope.png"});
+  auto missing = run_clrt({"compare", demo, "--image", dir / clrt_test::image_name("nope")});
   CHECK(missing.status == 2);
   CHECK(missing.one_line_error());
-  auto text = run_clrt({"compare", demo, "--image", dir.write("x.png", "not a png")});
+  auto text = run_clrt({"compare", demo, "--image", dir.write(clrt_test::image_name("x"), "not a png")});
   CHECK(text.status == 2);
   CHECK(text.one_line_error());
 }

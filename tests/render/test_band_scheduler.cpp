@@ -26,7 +26,7 @@ std::vector<int> drain(BandQueue& queue, int want, bool guided) {
 }  // namespace
 
 TEST_CASE("one worker takes the bands it asks for, the last one short", "[band]") {
-  BandQueue queue(157, 1);
+  BandQueue queue(0, 157, 1);
   const auto rows = drain(queue, 13, /*guided=*/true);  // guided has no effect alone
   REQUIRE(rows.size() == 13);                           // 157 = 12 * 13 + 1
   CHECK(rows.front() == 13);
@@ -36,7 +36,7 @@ TEST_CASE("one worker takes the bands it asks for, the last one short", "[band]"
 }
 
 TEST_CASE("guided bands: at most half an even share of what is left", "[band]") {
-  BandQueue queue(1000, 2);
+  BandQueue queue(0, 1000, 2);
   int y0 = 0, n = 0;
   REQUIRE(queue.take(1000, true, y0, n));
   CHECK(n == 250);  // 1000 left, 2 workers: ceil(1000 / 4)
@@ -51,7 +51,7 @@ TEST_CASE("guided bands: at most half an even share of what is left", "[band]") 
 }
 
 TEST_CASE("guided bands shrink to single rows at the end of the frame", "[band]") {
-  BandQueue queue(100, 4);
+  BandQueue queue(0, 100, 4);
   const auto rows = drain(queue, 100, true);
   int total = 0;
   for (int r : rows) total += r;
@@ -61,7 +61,7 @@ TEST_CASE("guided bands shrink to single rows at the end of the frame", "[band]"
 
 TEST_CASE("workers on several threads take every row exactly once", "[band]") {
   const int height = 5000, workers = 4;
-  BandQueue queue(height, workers);
+  BandQueue queue(0, height, workers);
   std::vector<int> owner(height, -1);
   std::vector<std::thread> threads;
   for (int w = 0; w < workers; ++w)
@@ -81,4 +81,14 @@ TEST_CASE("device default launch limits", "[band]") {
   CHECK(launch_limit_ms(TilePolicy{120, 0}, "GPU") == 120);
   CHECK(launch_limit_ms(TilePolicy{0, 0}, "GPU") == 0);
   CHECK(launch_limit_ms(TilePolicy{25, 0}, "CPU") == 25);
+}
+
+TEST_CASE("a queue over a range of rows hands out exactly that range", "[band]") {
+  BandQueue queue(40, 137, 3);
+  int y0 = 0, n = 0, expect = 40;
+  while (queue.take(16, true, y0, n)) {
+    CHECK(y0 == expect);
+    expect += n;
+  }
+  CHECK(expect == 137);
 }

@@ -217,7 +217,7 @@ TEST_CASE("BVH images equal brute-force images at every lane count", "[opencl][b
   }
 }
 
-TEST_CASE("the large shipped scenes: the hierarchy's image is the brute-force image", "[opencl][bvh]") {
+TEST_CASE("the large shipped scenes: the hierarchy's image is the brute-force image", "[opencl][bvh][full-build]") {
   const DeviceInfo device = clrt_test::test_device();
   const std::vector<std::string> scenes = clrt_test::shipped_scenes("scenes/large");
   REQUIRE(!scenes.empty());

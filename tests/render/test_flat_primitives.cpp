@@ -141,7 +141,8 @@ TEST_CASE("no ray passes between the triangles of a mesh, at its edges and verti
   }
 }
 
-TEST_CASE("an OBJ mesh through the hierarchy: the brute-force image and the reference", "[opencl][flat][bvh]") {
+TEST_CASE("an OBJ mesh through the hierarchy: the brute-force image and the reference",
+          "[opencl][flat][bvh][full-build]") {
   // The shipped mesh scene (two icospheres of 5 120 faces, a plane, a glass
   // sphere): through the hierarchy the image is the brute-force image bit
   // for bit, and both match the reference (small, for the reference's sake:

@@ -95,7 +95,8 @@ TEST_CASE("triangles: three vertices of three numbers", "[scene][flat]") {
   CHECK(error_of(R"({"triangles": {"vertices": []}})") == "t: triangles: expected an array, got object");
 }
 
-TEST_CASE("meshes: OBJ files from the scene's folder, transformed, with the scene's material", "[scene][flat][mesh]") {
+TEST_CASE("meshes: OBJ files from the scene's folder, transformed, with the scene's material",
+          "[scene][flat][mesh][full-build]") {
   const Scene s = clrt_test::load("scenes/large/mesh.json");
   CHECK(s.triangles.size() == 2 * 5120);
   CHECK(s.planes.size() == 1);
@@ -125,7 +126,7 @@ TEST_CASE("meshes: OBJ files from the scene's folder, transformed, with the scen
   CHECK_THROWS_AS(load_scene(clrt_test::source_path("scenes/large/mesh.json"), few), UserError);
 }
 
-TEST_CASE("a mesh file is read relative to the scene file's folder", "[scene][mesh]") {
+TEST_CASE("a mesh file is read relative to the scene file's folder", "[scene][mesh][full-build]") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("clrt-mesh-test-" + std::to_string(::getpid()));
   fs::create_directories(dir / "parts");
@@ -144,7 +145,7 @@ TEST_CASE("a mesh file is read relative to the scene file's folder", "[scene][me
   fs::remove_all(dir);
 }
 
-TEST_CASE("planes and triangles survive the round trip through JSON", "[scene][flat]") {
+TEST_CASE("planes and triangles survive the round trip through JSON", "[scene][flat][full-build]") {
   const Scene s = clrt_test::load("scenes/large/mesh.json");
   const Scene back = parse_scene(scene_to_json(s, JsonStyle::Compact), "back");
   REQUIRE(back.triangles.size() == s.triangles.size());

@@ -65,7 +65,7 @@ TEST_CASE("the scene's camera key \"aspect\": parsed, checked, round-tripped", "
 
 TEST_CASE("clrt warns about non-square pixels, and --aspect image fits the viewport", "[scene][viewport][cli]") {
   clrt_test::TempDir dir;
-  const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json"), out = dir / "a.png";
+  const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json"), out = dir / clrt_test::image_name("a");
   auto stretched = clrt_test::run_clrt({"render", scene, "--width", "64", "--height", "36", "-o", out});
   REQUIRE(stretched.status == 0);
   CHECK_THAT(stretched.err, Contains("clrt: warning: pixels are not square (0.562:1)"));

@@ -1,0 +1,62 @@
+// job.hpp - what every distributed command does around its work: rank 0
+// checks the input and shares it (or shares the failure, so no rank waits
+// forever), errors travel to rank 0, and a rank told to stop stops.
+#pragma once
+#include <exception>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dist/communicator.hpp"
+
+namespace clrt::dist {
+
+// A rank other than 0 ends because the job failed elsewhere: rank 0 prints
+// the one error line; this rank exits with status 2, printing nothing.
+struct JobAborted : std::runtime_error {
+  JobAborted() : std::runtime_error("the job was stopped by rank 0") {}
+};
+
+// Message tags of every protocol in dist/ (one place, so none collide).
+enum Tag : int {
+  kTagWork = 1,     // rank 0 -> rank: a unit of work (tile, frame, grid cell), or none left
+  kTagResult = 2,   // rank -> rank 0: a unit's result
+  kTagError = 3,    // rank -> rank 0: this rank failed (text)
+  kTagReport = 4,   // rank -> rank 0: this rank's share, at the end
+  kTagStop = 5,     // rank 0 -> rank: stop now, the job failed
+  kTagStopped = 6,  // rank -> rank 0: stopped
+  // rank -> rank 0: a tile's rows, straight from the image's memory
+  // (frame_farm.cpp); the tag is kTagRows + the tile's first row (MPI
+  // guarantees tags up to 32767; rows stay below kMaxImageEdge = 16384).
+  kTagRows = 64,
+};
+
+// Rank 0 runs `make` (which may throw: bad input is found there, before any
+// work is sent) and every rank gets its bytes; when `make` throws, every
+// other rank gets the failure and throws JobAborted, and rank 0 rethrows.
+// In a world of one: make().
+Bytes share_from_root(Communicator& comm, const std::function<Bytes()>& make);
+
+// A rank other than 0: the next unit of work rank 0 sends (a kTagWork
+// message); rank 0's stop instead is answered and ends in JobAborted.
+Message receive_work(Communicator& comm);
+
+// A rank other than 0 after an exception: tells rank 0 (what, with this
+// rank and host), waits for its stop, and throws JobAborted. Rank 0: none.
+[[noreturn]] void report_failure_to_root(Communicator& comm, const std::string& what);
+
+// Rank 0 after a failure (its own or a rank's): tells every rank in
+// `running` to stop and waits for them, up to `patience_s`. A rank that
+// does not answer in time (hung in a device call) ends the job: `print`
+// writes the error line, then MPI_Abort(2). Otherwise the caller reports.
+void stop_ranks(Communicator& comm, const std::vector<int>& running, const std::function<void()>& print,
+                double patience_s = 30);
+
+// One line for any exception a rank's work throws (OpenCL errors described).
+std::string exception_text(const std::exception_ptr& e);
+
+// "rank 2 (node07): " for messages.
+std::string rank_label(int rank, const std::string& host);
+
+}  // namespace clrt::dist

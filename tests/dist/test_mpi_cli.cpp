@@ -1,0 +1,177 @@
+// test_mpi_cli.cpp - `clrt render` launched by mpirun with 3 ranks, as a user
+// runs it: the image equals a single-process render pixel for pixel, and a
+// failure anywhere (bad input on rank 0, a bad device on one rank, a rank
+// killed) ends the job with one `clrt: error:` line and no output or temp
+// file. Skipped (with a message) where mpirun is absent or clrt was built
+// without MPI; there, the refusal of an mpirun launch is tested instead.
+#include <signal.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "cli_run.hpp"
+#include "dist/communicator.hpp"
+#include "image/image_file.hpp"
+#include "mpi_run.hpp"
+#include "test_util.hpp"
+
+namespace fs = std::filesystem;
+using clrt_test::have_mpirun;
+using clrt_test::run_command_line;
+using clrt_test::RunResult;
+using clrt_test::shell_quote;
+using clrt_test::TempDir;
+
+namespace {
+
+// The lines of `text` that start with `prefix`.
+int lines_starting(const std::string& text, const std::string& prefix) {
+  int n = 0;
+  size_t at = 0;
+  while (at < text.size()) {
+    const size_t end = text.find('\n', at);
+    if (text.compare(at, prefix.size(), prefix) == 0) ++n;
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return n;
+}
+
+// Pixels only (the files' metadata names the ranks).
+void require_same_pixels(const std::string& a, const std::string& b) {
+  const clrt::Image x = clrt::read_image(a, 4096, 1 << 24), y = clrt::read_image(b, 4096, 1 << 24);
+  REQUIRE(x.width == y.width);
+  REQUIRE(x.height == y.height);
+  CHECK(clrt::to_u8(x) == clrt::to_u8(y));
+  CHECK(x.rgb == y.rgb);
+}
+
+#define SKIP_WITHOUT_MPI()                                                         \
+  if (!clrt_test::can_run_mpi()) {                                                 \
+    WARN("skipped: " << (have_mpirun() ? "clrt built without MPI" : "no mpirun")); \
+    return;                                                                        \
+  }
+
+}  // namespace
+
+TEST_CASE("mpirun -np 3 clrt render: the same pixels as one process", "[mpi-cli][opencl]") {
+  SKIP_WITHOUT_MPI();
+  TempDir dir;
+  const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json");
+  struct Case {
+    std::string name;
+    std::vector<std::string> options;
+  };
+  const Case cases[] = {
+      {"demo.ppm", {"--width", "320", "--height", "200"}},
+      {"demo.pfm", {"--width", "160", "--height", "123", "--spp", "2", "--mpi-tile-rows", "5"}},
+      {"demo-sub.ppm", {"--width", "200", "--height", "90", "--subsample", "interpolate", "--mpi-tile-rows", "1"}},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> one{"render", scene, "-o", dir / ("one-" + c.name), "-q"};
+    std::vector<std::string> many{"render", scene, "-o", dir / c.name, "-q"};
+    one.insert(one.end(), c.options.begin(), c.options.end());
+    many.insert(many.end(), c.options.begin(), c.options.end());
+    const RunResult single = clrt_test::run_clrt(one);
+    REQUIRE(single.status == 0);
+    const RunResult job = run_command_line(clrt_test::mpirun_prefix(3) + clrt_test::clrt_command(many));
+    INFO(job.err);
+    REQUIRE(job.status == 0);
+    // The report: the frame, then one line per rank.
+    CHECK_THAT(job.out, Catch::Contains("on 3 MPI ranks"));
+    CHECK(lines_starting(job.out, "  rank ") == 3);
+    require_same_pixels(dir / ("one-" + c.name), dir / c.name);
+  }
+}
+
+TEST_CASE("mpirun: bad input is one error line from rank 0, before any work", "[mpi-cli]") {
+  SKIP_WITHOUT_MPI();
+  TempDir dir;
+  dir.write("bad.json", "{\"spheres\": [");
+  const std::string out = dir / "out.ppm";
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"render", dir / "bad.json", "-o", out},
+           {"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", dir / "no-such-dir/out.ppm"},
+           {"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", out, "--width", "0"},
+           {"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", out, "--engine", "reference"},
+           {"bench", clrt_test::source_path("scenes/cgfs-demo.json")},
+       }) {
+    const RunResult job = run_command_line(clrt_test::mpirun_prefix(3) + clrt_test::clrt_command(args));
+    INFO(args[1] << " " << job.err);
+    CHECK(job.status == 2);
+    CHECK(job.one_line_error());
+    CHECK(lines_starting(job.err, "clrt: error: ") == 1);
+  }
+  CHECK(dir.entries() == std::vector<std::string>{"bad.json"});
+}
+
+TEST_CASE("mpirun: a bad device on one rank ends the job, naming the rank", "[mpi-cli][opencl]") {
+  SKIP_WITHOUT_MPI();
+  TempDir dir;
+  const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json"), out = dir / clrt_test::image_name("out");
+  // MPMD: ranks 0 and 1 as usual, rank 2 with a device that does not exist.
+  const std::vector<std::string> args{"render", scene,      "-o",  out,        "--width",
+                                      "200",    "--height", "100", "--aspect", "image"};
+  std::vector<std::string> bad = args;
+  bad.insert(bad.end(), {"--device", "99"});
+  const RunResult job = run_command_line("timeout 600 mpirun -q --oversubscribe --allow-run-as-root -np 2 " +
+                                         clrt_test::clrt_command(args) + " : -np 1 " + clrt_test::clrt_command(bad));
+  INFO(job.err);
+  CHECK(job.status == 2);
+  CHECK(job.one_line_error());
+  CHECK_THAT(job.err, Catch::StartsWith("clrt: error: rank 2 ("));
+  CHECK(dir.entries().empty());
+}
+
+TEST_CASE("mpirun: a rank killed mid-frame ends the job with no output or temp file", "[mpi-cli][opencl]") {
+  SKIP_WITHOUT_MPI();
+  TempDir dir;
+  const std::string out = dir / clrt_test::image_name("killed");
+  // A frame of several seconds (spp 16 over 3 ranks on 2 cores).
+  const std::string line = clrt_test::mpirun_prefix(3) +
+                           clrt_test::clrt_command({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o",
+                                                    out, "--width", "1280", "--height", "720", "--spp", "16"});
+  RunResult job;
+  std::thread runner([&] { job = run_command_line(line); });
+  // Find rank 1 (its environment says so) among the processes writing `out`, once it renders.
+  bool killed = false;
+  for (int attempt = 0; attempt < 200 && !killed; ++attempt) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    for (const auto& proc : fs::directory_iterator("/proc")) {
+      const std::string pid = proc.path().filename();
+      if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+      const std::string cmdline = clrt_test::slurp(proc.path() / "cmdline");
+      if (cmdline.find(out) == std::string::npos || cmdline.find("mpirun") != std::string::npos) continue;
+      const std::string env = clrt_test::slurp(proc.path() / "environ");
+      if (env.find(std::string("OMPI_COMM_WORLD_RANK=1") + '\0') == std::string::npos) continue;
+      if (attempt < 30) break;  // let it start rendering (~1.5 s)
+      killed = ::kill(std::stoi(pid), SIGKILL) == 0;
+      break;
+    }
+  }
+  runner.join();
+  INFO(job.err);
+  REQUIRE(killed);
+  CHECK(job.status != 0);
+  CHECK(lines_starting(job.err, "clrt: error: ") == 1);
+  CHECK_THAT(job.err, Catch::Contains("mpirun ends every rank"));
+  CHECK(dir.entries().empty());  // neither the image nor its temp file
+}
+
+TEST_CASE("a clrt built without MPI refuses an mpirun launch", "[mpi-cli]") {
+  if (clrt::dist::built_with_mpi() || !have_mpirun()) {
+    WARN("skipped: " << (have_mpirun() ? "clrt built with MPI (the tests above run)" : "no mpirun"));
+    return;
+  }
+  TempDir dir;
+  const RunResult job = run_command_line(
+      clrt_test::mpirun_prefix(2) +
+      clrt_test::clrt_command({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", dir / "x.ppm"}));
+  CHECK(job.status == 2);
+  CHECK(job.one_line_error());
+  CHECK_THAT(job.err, Catch::Contains("built without MPI"));
+  CHECK(dir.entries().empty());
+}
