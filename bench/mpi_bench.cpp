@@ -120,12 +120,7 @@ nlohmann::json stats_of(const std::vector<double>& v, const std::string& unit) {
 // renderer) farmed whole by dist::farm_frames; frames are gathered on rank
 // 0 but not written. Prints the frames/s of the R measured frames.
 int queue(dist::Communicator& comm, const Options& o) {
-  Scene scene;
-  const dist::Bytes bytes = dist::share_from_root(comm, [&] {
-    scene = load_scene(o.scene);
-    return dist::encode_scene(scene);
-  });
-  if (comm.rank() != 0) scene = dist::decode_scene(bytes);
+  const Scene scene = dist::share_scene(comm, [&] { return load_scene(o.scene); });
   RenderSettings settings;
   settings.kernel.output = FrameContents{PixelFormat::Rgba8, /*classes=*/false};
   std::unique_ptr<Renderer> renderer;
@@ -160,12 +155,7 @@ int queue(dist::Communicator& comm, const Options& o) {
 // ---- frames -------------------------------------------------------------------
 
 int frames(dist::Communicator& comm, const Options& o) {
-  Scene scene;
-  const dist::Bytes bytes = dist::share_from_root(comm, [&] {
-    scene = load_scene(o.scene);
-    return dist::encode_scene(scene);
-  });
-  if (comm.rank() != 0) scene = dist::decode_scene(bytes);
+  const Scene scene = dist::share_scene(comm, [&] { return load_scene(o.scene); });
   RenderSettings settings;
   settings.kernel.output = FrameContents{PixelFormat::Rgba8, /*classes=*/false};
   settings.tiles.band_rows = o.band_rows;  // clrt's --band-rows: launches per tile (0: the renderer's choice)

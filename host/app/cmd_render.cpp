@@ -36,14 +36,11 @@ namespace {
 void render_across_ranks(const RenderOptions& o, const std::string& out, const std::string& format, int tile_rows) {
   dist::Communicator& comm = dist::world();
   OutputTarget target;
-  Scene scene;
-  const dist::Bytes bytes = dist::share_from_root(comm, [&] {
+  const Scene scene = dist::share_scene(comm, [&] {
     if (o.engine != "opencl") throw UserError("--engine " + o.engine + " does not run across MPI ranks");
     target = check_output_format(out, format);  // fail before any rank renders
-    scene = o.image.load_scene(o.scene_path);
-    return dist::encode_scene(scene);
+    return o.image.load_scene(o.scene_path);
   });
-  if (comm.rank() != 0) scene = dist::decode_scene(bytes);
   const int depth = o.image.effective_depth(scene);
   RenderSettings settings = o.settings();
   settings.kernel.output = FrameContents{output_pixel_format(out, format), /*classes=*/false};

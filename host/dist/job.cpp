@@ -49,6 +49,15 @@ Bytes share_from_root(Communicator& comm, const std::function<Bytes()>& make) {
   return Bytes(message.begin() + 1, message.end());
 }
 
+Scene share_scene(Communicator& comm, const std::function<Scene()>& load) {
+  Scene scene;
+  const Bytes bytes = share_from_root(comm, [&] {
+    scene = load();
+    return encode_scene(scene);
+  });
+  return comm.rank() == 0 ? scene : decode_scene(bytes);
+}
+
 Message receive_work(Communicator& comm) {
   for (;;) {
     Message m = comm.receive(0, kAnyTag);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dist/communicator.hpp"
+#include "scene/scene.hpp"
 
 namespace clrt::dist {
 
@@ -41,6 +42,10 @@ Bytes share_from_root(Communicator& comm, const std::function<Bytes()>& make);
 // A rank other than 0: the next unit of work rank 0 sends (a kTagWork
 // message); rank 0's stop instead is answered and ends in JobAborted.
 Message receive_work(Communicator& comm);
+
+// share_from_root() for a scene: rank 0 runs `load` (which may throw, and
+// may check other input first), every rank returns the same scene, exact.
+Scene share_scene(Communicator& comm, const std::function<Scene()>& load);
 
 // A rank other than 0 after an exception: tells rank 0 (what, with this
 // rank and host), waits for its stop, and throws JobAborted. Rank 0: none.

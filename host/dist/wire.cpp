@@ -117,15 +117,8 @@ std::vector<Span> row_pieces(Image& img, int y0, int y1) {
 Bytes encode_rows(const Image& img, int y0, int y1) {
   Writer w;
   w.put<int32_t>(y0), w.put<int32_t>(y1);
-  const size_t first = size_t(y0) * img.width, count = size_t(y1 - y0) * img.width;
-  if (img.contents.pixels == PixelFormat::Float)
-    w.put_raw(img.rgb.data() + first * 3, count * 3 * sizeof(double));
-  else
-    w.put_raw(img.rgba8.data() + first * 4, count * 4);
-  if (img.contents.classes) {
-    w.put_raw(img.hit.data() + first, count * sizeof(int32_t));
-    w.put_raw(img.shadowed.data() + first, count * sizeof(int32_t));
-  }
+  // The pieces are only read here (row_pieces() serves receives too).
+  for (const Span& p : row_pieces(const_cast<Image&>(img), y0, y1)) w.put_raw(p.data, p.bytes);
   return std::move(w.bytes);
 }
 
@@ -133,15 +126,7 @@ void decode_rows(const Bytes& b, Image& img, int& y0, int& y1) {
   Reader r(b);
   y0 = r.get<int32_t>(), y1 = r.get<int32_t>();
   if (y0 < 0 || y1 < y0 || y1 > img.height) throw DeviceError("MPI: rows out of the frame in a message");
-  const size_t first = size_t(y0) * img.width, count = size_t(y1 - y0) * img.width;
-  if (img.contents.pixels == PixelFormat::Float)
-    r.get_raw(img.rgb.data() + first * 3, count * 3 * sizeof(double));
-  else
-    r.get_raw(img.rgba8.data() + first * 4, count * 4);
-  if (img.contents.classes) {
-    r.get_raw(img.hit.data() + first, count * sizeof(int32_t));
-    r.get_raw(img.shadowed.data() + first, count * sizeof(int32_t));
-  }
+  for (const Span& p : row_pieces(img, y0, y1)) r.get_raw(p.data, p.bytes);
   if (!r.done()) throw DeviceError("MPI: a rows message with bytes left over");
 }
 
