@@ -1,5 +1,6 @@
 // cmd_accuracy.cpp - `clrt accuracy SCENE...`: error against kernel time for
 // every precision variant.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 #include <sstream>

@@ -1,4 +1,5 @@
 // cmd_bench.cpp - `clrt bench SCENE`: timings, rays and speedups (eval/bench.hpp).
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 

@@ -1,5 +1,6 @@
 // cmd_cache.cpp - `clrt cache info` and `clrt cache clear`: the program
 // binary cache (cl/program_cache.hpp) seen and emptied from the command line.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
 #include <string>

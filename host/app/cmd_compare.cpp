@@ -1,5 +1,6 @@
 // cmd_compare.cpp - `clrt compare SCENE`: OpenCL (or an image file) against
 // the reference, with optional pass/fail thresholds (exit 1 on a fail).
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>

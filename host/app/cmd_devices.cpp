@@ -1,5 +1,6 @@
 // cmd_devices.cpp - `clrt devices [--check]`: every platform and device, and
 // optionally a check that each renders correctly.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 #include <string>

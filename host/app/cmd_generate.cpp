@@ -1,5 +1,6 @@
 // cmd_generate.cpp - `clrt generate -o SCENE.json`: a random-sphere scene of
 // any size (scene/random_scene.hpp), for benchmarks and tests.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 

@@ -1,5 +1,6 @@
 // cmd_render.cpp - `clrt render SCENE... -o OUT`: one frame, or one frame
 // per scene written to OUT's pattern (frame_####.png).
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 #include <string>

@@ -1,5 +1,6 @@
 // cmd_scaling.cpp - `clrt scaling --spheres 1000,10000,...`: frame time
 // against the number of spheres, clrt beside the Embree tracer.
+#include <CLI/CLI.hpp>
 #include <cctype>
 #include <charconv>
 #include <cstdio>

@@ -1,5 +1,6 @@
 // cmd_stability.cpp - `clrt stability`: the stiff/extreme suite on every
 // variant, with verdicts and where each variant breaks.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 

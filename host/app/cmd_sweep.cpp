@@ -1,4 +1,5 @@
 // cmd_sweep.cpp - `clrt sweep SCENE --depths A:B`: bench per depth and device.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 

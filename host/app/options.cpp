@@ -1,6 +1,7 @@
 // options.cpp - the option groups: their flags, checks and conversions.
 #include "app/options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <stdexcept>
 

@@ -3,7 +3,6 @@
 // options to a CLI11 command, checks them, and turns them into the core's
 // settings (KernelConfig, RenderSettings). Only app/ sees CLI11.
 #pragma once
-#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
@@ -11,6 +10,13 @@
 #include "render/renderer.hpp"
 #include "scene/sampling.hpp"
 #include "scene/scene.hpp"
+
+// CLI11's App by name only: the files that add options include CLI11
+// (some 10 s of compile time a file at -O3), the reports that include this
+// header for the option structs do not.
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace clrt {
 

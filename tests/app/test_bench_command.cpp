@@ -134,7 +134,7 @@ TEST_CASE("clrt bench --no-embree, --no-omp and --no-reference drop their compar
   CHECK(j["reference"]["n"] == 1);
 }
 
-TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep][opencl]") {
+TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep][opencl][slow]") {
   clrt_test::TempDir dir;
   auto r =
       clrt_test::run_clrt({"sweep", clrt_test::source_path("scenes/cgfs-demo.json"), "--depths", "0:2", "--width", "32",
@@ -161,7 +161,7 @@ TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep
   CHECK(std::filesystem::file_size(dir / "s-rays.png") > 0);
 }
 
-TEST_CASE("clrt scaling writes one CSV row per count and a log-log plot", "[cli][bench][opencl]") {
+TEST_CASE("clrt scaling writes one CSV row per count and a log-log plot", "[cli][bench][opencl][slow]") {
   clrt_test::TempDir dir;
   auto r = clrt_test::run_clrt({"scaling", "--spheres", "8,40", "--width", "24", "--height", "16", "--repeat", "1",
                                 "--csv", dir / "s.csv", "--plot", dir / "s.png"});

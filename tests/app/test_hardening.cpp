@@ -225,7 +225,7 @@ TEST_CASE("directional light directions are rescaled without overflow or underfl
   }
 }
 
-TEST_CASE("at the edges of the accepted range no engine or precision gives a NaN pixel", "[opencl][hardening]") {
+TEST_CASE("at the edges of the accepted range no engine or precision gives a NaN pixel", "[opencl][hardening][slow]") {
   // Each scene is at a limit of scene.hpp's range; every variant the device
   // runs must stay finite, and so must the reference.
   const std::vector<std::string> scenes = {

@@ -77,7 +77,7 @@ TEST_CASE("frame patterns: a run of '#' is the zero-padded frame number", "[fram
 }
 
 TEST_CASE("several scenes in one process: the pixels of separate renders, one line each and a total",
-          "[frames][cli][opencl]") {
+          "[frames][cli][opencl][slow]") {
   TempDir dir;
   const auto list = scenes();
   for (const std::string ext : {"ppm", "pfm"}) {

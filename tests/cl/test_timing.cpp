@@ -58,7 +58,7 @@ bool has_rusticl() {
 }
 }  // namespace
 
-TEST_CASE("bench on rusticl: plausible times, and it says which clock", "[timing][cli][bench]") {
+TEST_CASE("bench on rusticl: plausible times, and it says which clock", "[timing][cli][bench][slow]") {
   if (!has_rusticl()) {
     WARN("no rusticl device (install mesa-opencl-icd, set RUSTICL_ENABLE=swrast); skipped");
     return;

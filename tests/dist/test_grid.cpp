@@ -312,7 +312,7 @@ TEST_CASE("run_grid in a world of one: every cell once, in order, on the calling
 }
 
 TEST_CASE("the grid drivers give run_sweep's and measure_accuracy's rows (a world of one)",
-          "[dist][grid][sweep][accuracy][opencl]") {
+          "[dist][grid][sweep][accuracy][opencl][slow]") {
   dist::SingleProcess one;
   const DeviceInfo dev = clrt_test::test_device();
   const Scene scene = clrt_test::load("scenes/cgfs-demo.json");

@@ -14,7 +14,7 @@
 
 using namespace clrt;
 
-TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl]") {
+TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl][slow]") {
   AccuracySettings s;
   s.width = s.height = 200;
   s.repeat = 3;

@@ -138,7 +138,7 @@ TEST_CASE("supersampling the reference changes only edge pixels and converges", 
   CHECK(pairs == 3);
 }
 
-TEST_CASE("every variant meets its expectations on the whole suite (160x120)", "[stability][opencl]") {
+TEST_CASE("every variant meets its expectations on the whole suite (160x120)", "[stability][opencl][slow]") {
   // Tolerance: the verdict above (0.05% of 19,200 pixels = 9 pixels off by
   // more than one level, zero NaN/Inf). Robust is required to pass every
   // stable case; naive and stable must FAIL every floor radius (measured
@@ -187,7 +187,7 @@ TEST_CASE("every variant meets its expectations on the whole suite (160x120)", "
   }
 }
 
-TEST_CASE("clrt stability --json reports every case x variant and the summary", "[stability][cli][opencl]") {
+TEST_CASE("clrt stability --json reports every case x variant and the summary", "[stability][cli][opencl][slow]") {
   // Tiny images: only the report's structure is checked here (verdicts at
   // this size are not meaningful: one pixel is 0.08%).
   auto r = clrt_test::run_clrt({"stability", "--json", "--width", "40", "--height", "30"});
@@ -218,7 +218,7 @@ TEST_CASE("clrt stability --json reports every case x variant and the summary", 
 }
 
 TEST_CASE("robust: every case gives the generic kernel's image when specialized",
-          "[stability][opencl][specialize][per-case-builds]") {
+          "[stability][opencl][specialize][per-case-builds][slow]") {
   // The suite runs the generic kernel, which decides per sphere at run time
   // between compensated and cheap arithmetic (clrt_sphere.compensated). A
   // specialized build compiles out the path no sphere of the scene takes

@@ -169,7 +169,7 @@ TEST_CASE("accel modes: auto uses the hierarchy from kBvhMinSpheres on", "[bvh]"
   CHECK(build_options(config, random_spheres(100), 3, false).find("-DCLRT_BVH") != std::string::npos);
 }
 
-TEST_CASE("BVH images equal brute-force images at every precision (1 to 10 000 spheres)", "[opencl][bvh]") {
+TEST_CASE("BVH images equal brute-force images at every precision (1 to 10 000 spheres)", "[opencl][bvh][slow]") {
   const DeviceInfo device = clrt_test::test_device();
   // Mesa rusticl's llvmpipe renders the every-sphere loop wrong at 10 000
   // spheres (23% of pixels off by more than a level against the reference,
@@ -203,7 +203,7 @@ TEST_CASE("BVH images equal brute-force images at every precision (1 to 10 000 s
   }
 }
 
-TEST_CASE("BVH images equal brute-force images at every lane count", "[opencl][bvh]") {
+TEST_CASE("BVH images equal brute-force images at every lane count", "[opencl][bvh][slow]") {
   // The hierarchy reads each hit sphere's material once per distinct index
   // among the lanes (a reduction whose code differs per lane count).
   const Scene scene = random_spheres(300, 17);
@@ -217,7 +217,8 @@ TEST_CASE("BVH images equal brute-force images at every lane count", "[opencl][b
   }
 }
 
-TEST_CASE("the large shipped scenes: the hierarchy's image is the brute-force image", "[opencl][bvh][full-build]") {
+TEST_CASE("the large shipped scenes: the hierarchy's image is the brute-force image",
+          "[opencl][bvh][full-build][slow]") {
   const DeviceInfo device = clrt_test::test_device();
   const std::vector<std::string> scenes = clrt_test::shipped_scenes("scenes/large");
   REQUIRE(!scenes.empty());
@@ -238,7 +239,7 @@ TEST_CASE("the large shipped scenes: the hierarchy's image is the brute-force im
   }
 }
 
-TEST_CASE("BVH images equal brute-force images on the stiff and extreme cases", "[opencl][bvh][stability]") {
+TEST_CASE("BVH images equal brute-force images on the stiff and extreme cases", "[opencl][bvh][stability][slow]") {
   const DeviceInfo device = clrt_test::test_device();
   for (const StabilityCase& c : stability_suite()) {
     for (Precision p : all_precisions()) {
@@ -253,7 +254,7 @@ TEST_CASE("BVH images equal brute-force images on the stiff and extreme cases", 
   }
 }
 
-TEST_CASE("the ray counters count the spheres a walk tests", "[opencl][bvh][rays]") {
+TEST_CASE("the ray counters count the spheres a walk tests", "[opencl][bvh][rays][slow]") {
   const Scene scene = random_spheres(2000, 3);
   KernelConfig config;
   config.count_rays = true;

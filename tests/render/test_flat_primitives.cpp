@@ -58,7 +58,7 @@ Scene edge_wall(int width, int height, int cell) {
 
 }  // namespace
 
-TEST_CASE("OpenCL matches the reference on planes and triangles", "[opencl][flat]") {
+TEST_CASE("OpenCL matches the reference on planes and triangles", "[opencl][flat][slow]") {
   // The tolerance of `clrt stability` (within_tolerance(), eval/compare.hpp):
   // float32 decides rays that graze a silhouette or edge differently from
   // double.
@@ -92,7 +92,7 @@ TEST_CASE("the reference numbers hits over spheres, then planes, then triangles"
   for (int id = 0; id < 4; ++id) CHECK(seen[size_t(id)] > 0);  // the far plane is hidden here and there only
 }
 
-TEST_CASE("specialized and generic kernels agree on planes and triangles", "[opencl][flat][specialize]") {
+TEST_CASE("specialized and generic kernels agree on planes and triangles", "[opencl][flat][specialize][slow]") {
   const Scene s = clrt_test::flat_scene();
   KernelConfig generic;
   generic.specialize = false;
@@ -115,7 +115,8 @@ TEST_CASE("scenes without planes or triangles compile neither", "[flat][speciali
   CHECK(flat_options.find("-DCLRT_HAS_TRIANGLES=1") != std::string::npos);
 }
 
-TEST_CASE("no ray passes between the triangles of a mesh, at its edges and vertices", "[opencl][flat][reference]") {
+TEST_CASE("no ray passes between the triangles of a mesh, at its edges and vertices",
+          "[opencl][flat][reference][slow]") {
   // Every pixel of the wall must show the wall, in the reference and in
   // every kernel build, through the hierarchy and without: a background
   // pixel is a ray that leaked through a shared edge or vertex.

@@ -38,7 +38,8 @@ bool opaque(const Image& img) {
 
 }  // namespace
 
-TEST_CASE("8-bit kernel output is the host's canvas conversion of the float output, bit for bit", "[opencl][output]") {
+TEST_CASE("8-bit kernel output is the host's canvas conversion of the float output, bit for bit",
+          "[opencl][output][slow]") {
   const DeviceInfo dev = clrt_test::test_device();
   const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
   const Scene camera = clrt_test::load("scenes/cgfs-camera.json");

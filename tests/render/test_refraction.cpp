@@ -69,7 +69,8 @@ TEST_CASE("the reference totally reflects past the critical angle, from the came
   }
 }
 
-TEST_CASE("the kernel totally reflects past the critical angle, from the camera's medium", "[opencl][refraction]") {
+TEST_CASE("the kernel totally reflects past the critical angle, from the camera's medium",
+          "[opencl][refraction][slow]") {
   const DeviceInfo dev = clrt_test::test_device();
   for (const auto& [name, cfg] : clrt_test::kernel_builds(dev)) {
     for (double offset : {6.0, 6.6, 6.7, 8.0}) {
@@ -82,7 +83,7 @@ TEST_CASE("the kernel totally reflects past the critical angle, from the camera'
   }
 }
 
-TEST_CASE("a transparent sphere of index 1 is the book's plain transparency", "[reference]") {
+TEST_CASE("a transparent sphere of index 1 is the book's plain transparency", "[reference][slow]") {
   // Ambient light only (no shadows, no position-dependent shading): a clear
   // sphere of index 1 (transparency 1, reflectivity 0) in front of the others
   // passes each ray on unbent (T = d exactly) with weight 1, so the image is
@@ -134,7 +135,7 @@ TEST_CASE("the medium around a sphere is the smallest transparent sphere contain
   CHECK(packed.params.camera_medium == 1.7f);
 }
 
-TEST_CASE("OpenCL matches the reference on the refraction scene", "[opencl][refraction]") {
+TEST_CASE("OpenCL matches the reference on the refraction scene", "[opencl][refraction][slow]") {
   // The tolerance of `clrt stability` and `clrt devices --check`
   // (within_tolerance(), eval/compare.hpp): float32 decides grazing rays at
   // silhouettes differently from double; refracted rays bend those
@@ -155,7 +156,7 @@ TEST_CASE("OpenCL matches the reference on the refraction scene", "[opencl][refr
   }
 }
 
-TEST_CASE("every lane count walks the same tree", "[opencl][refraction][specialize]") {
+TEST_CASE("every lane count walks the same tree", "[opencl][refraction][specialize][slow]") {
   // The walk is in lock step across lanes (masked where a lane has no ray at
   // a tree position): any lane count must give the scalar kernel's image,
   // bit for bit.
@@ -200,7 +201,7 @@ TEST_CASE("depth deeper than the slot class renders what the reference renders",
   CHECK(within_tolerance(c));
 }
 
-TEST_CASE("ray counters count refracted rays", "[opencl][refraction][rays]") {
+TEST_CASE("ray counters count refracted rays", "[opencl][refraction][rays][slow]") {
   // The camera inside a sphere of radius 100 (test_util.hpp), now half
   // reflective and half transparent with index 1: every hit spawns a
   // reflected ray, which hits the sphere again, and a refracted one, which

@@ -67,7 +67,7 @@ TEST_CASE("one specialized program serves every depth that reflects", "[opencl][
   }
 }
 
-TEST_CASE("every precision and lane count gives the generic kernel's image", "[opencl][specialize]") {
+TEST_CASE("every precision and lane count gives the generic kernel's image", "[opencl][specialize][slow]") {
   DeviceInfo dev = clrt_test::test_device();
   Scene s = clrt_test::load("scenes/cgfs-demo.json");
   for (Precision p : {Precision::Naive, Precision::Stable, Precision::Robust, Precision::Fp64}) {
@@ -128,7 +128,7 @@ TEST_CASE("program cache: a second build is a hit and renders the same image", "
   ::setenv("CLRT_CACHE_DIR", old.c_str(), 1);
 }
 
-TEST_CASE("ray counters match counts derived by hand", "[opencl][rays]") {
+TEST_CASE("ray counters match counts derived by hand", "[opencl][rays][slow]") {
   DeviceInfo dev = clrt_test::test_device();
   const int W = 37, H = 11;  // 37: not a multiple of the lane count
   const uint64_t px = uint64_t(W) * H;

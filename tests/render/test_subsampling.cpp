@@ -137,7 +137,7 @@ TEST_CASE("with a single primitive, shade subsampling is exact", "[reference][op
   CHECK(pixels_differing(render(KernelConfig{}, s, kW, kH, 3, kShade), render(KernelConfig{}, s, kW, kH, 3, {})) == 0);
 }
 
-TEST_CASE("OpenCL subsampling matches the reference's subsampled twin", "[opencl][subsample]") {
+TEST_CASE("OpenCL subsampling matches the reference's subsampled twin", "[opencl][subsample][slow]") {
   // The tolerance of `clrt stability` (within_tolerance(), eval/compare.hpp):
   // the engines' camera rays decide grazing hits differently, and a pixel
   // assumed or interpolated from such a neighbour may differ with it; an
@@ -173,7 +173,7 @@ TEST_CASE("OpenCL subsampling matches the reference's subsampled twin", "[opencl
     }
 }
 
-TEST_CASE("OpenCL shade subsampling: the even columns are the exact render, bit for bit", "[opencl][subsample]") {
+TEST_CASE("OpenCL shade subsampling: the even columns are the exact render, bit for bit", "[opencl][subsample][slow]") {
   // Pass 0 finds their hits with the full search; pass 1 tests the primitive
   // found again (the same arithmetic, the same root) and shades it as usual.
   const DeviceInfo dev = clrt_test::test_device();
@@ -224,7 +224,7 @@ TEST_CASE("subsampling does not depend on the bands a frame is cut into", "[open
   }
 }
 
-TEST_CASE("what each subsampling mode saves: searches, or whole camera rays", "[opencl][subsample][rays]") {
+TEST_CASE("what each subsampling mode saves: searches, or whole camera rays", "[opencl][subsample][rays][slow]") {
   const Scene s = clrt_test::load("scenes/cgfs-demo.json");
   KernelConfig cfg;
   cfg.count_rays = true;
