@@ -153,6 +153,7 @@ int main(int argc, char** argv) {
   clrt::add_generate_command(app);
   clrt::add_cache_command(app);
   add_quiet_flag(&app);
+  clrt::add_number_checks(&app);
   // Messages of the layers below: none of --verbose's with --quiet, and the
   // progress line erased before any other.
   clrt::set_log_sink([](clrt::LogLevel level, const std::string& message) {

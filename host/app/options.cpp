@@ -2,7 +2,9 @@
 #include "app/options.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "clrt_layout.h"
@@ -211,6 +213,33 @@ void RenderOptions::validate() const {
     throw UserError("unknown engine \"" + engine + "\" (expected opencl or reference)");
   launch.validate();
   (void)kernel.config();
+}
+
+void add_number_checks(CLI::App* cmd) {
+  // (No description: the help keeps showing the option's type and range.)
+  static const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;  // (1e999 too: it would convert to infinity)
+        const double value = std::strtod(text.c_str(), &end);
+        if (end != text.c_str() && !std::isfinite(value))
+          return "expected a finite number (got \"" + text.substr(0, 64) + "\")";
+        return "";  // a number, or not one at all: CLI11's conversion says so
+      },
+      "", "finite");
+  static const CLI::Validator non_negative(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end != text.c_str() && value < 0) return "expected a number >= 0 (got \"" + text.substr(0, 64) + "\")";
+        return "";
+      },
+      "", "non-negative");
+  for (CLI::Option* option : cmd->get_options()) {
+    const std::string type = option->get_type_name();
+    if (type.rfind("FLOAT", 0) == 0) option->check(finite);
+    if (type.rfind("UINT", 0) == 0) option->check(non_negative);
+  }
+  for (CLI::App* sub : cmd->get_subcommands({})) add_number_checks(sub);
 }
 
 }  // namespace clrt

@@ -101,6 +101,14 @@ struct LaunchOptions {
 constexpr int kMaxRepeat = 1000;
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help);
 
+// The rule for every number on the command line, added to each option of
+// `cmd` and of its subcommands by the type CLI11 parses it as: a floating
+// option (FLOAT) takes finite numbers only (CLI11 reads "nan" and "inf" as
+// numbers, and NaN passes every range check), an unsigned one (UINT) no
+// negative number (CLI11 reads "-1" as 2^64 - 1). Called once, after every
+// command is added.
+void add_number_checks(CLI::App* cmd);
+
 // Everything a render-like subcommand (render, compare, bench, sweep) takes.
 struct RenderOptions {
   std::string scene_path;

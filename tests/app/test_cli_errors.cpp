@@ -2,6 +2,7 @@
 // line on stderr naming the file and the problem, and no output file.
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <sstream>
 
 #include "cli_run.hpp"
 #include "test_util.hpp"
@@ -129,6 +130,70 @@ TEST_CASE("bad image size and depth options", "[cli]") {
   check_bad_render({"--depth", "-1"}, out, {"--depth: Value -1 not in range 0 to 64"});
   check_bad_render({"--depth", "65"}, out, {"--depth: Value 65 not in range 0 to 64"});
   CHECK(dir.entries().empty());
+}
+
+TEST_CASE("every floating option refuses NaN and infinities, every unsigned one a negative number", "[cli]") {
+  // The options are read off each command's --help by the type CLI11 shows
+  // (FLOAT, UINT), so an option added later is covered too. Before this
+  // rule, `compare --fail-percent nan` dropped the gate (NaN passes a range
+  // check) and `generate --seed -1` wrapped to 2^64 - 1.
+  TempDir dir;
+  const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json");
+  const std::string out = dir / clrt_test::image_name("out");
+  const std::vector<std::pair<std::string, std::vector<std::string>>> commands = {
+      {"render", {scene, "-o", out}},
+      {"compare", {scene}},
+      {"bench", {scene}},
+      {"sweep", {scene}},
+      {"accuracy", {scene}},
+      {"stability", {}},
+      {"scaling", {}},
+      {"devices", {}},
+      {"generate", {"-o", dir / "scene.json"}}};
+  size_t floats = 0, unsigneds = 0;
+  for (const auto& [command, required] : commands) {
+    const RunResult help = run_clrt({command, "--help"});
+    REQUIRE(help.status == 0);
+    std::istringstream lines(help.out);
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream words(line);
+      std::string names, type;
+      words >> names >> type;
+      if (names.rfind("-", 0) != 0) continue;
+      const std::string option = names.substr(names.rfind(',') == std::string::npos ? 0 : names.rfind(',') + 1);
+      const bool is_float = type.rfind("FLOAT", 0) == 0, is_unsigned = type.rfind("UINT", 0) == 0;
+      std::vector<std::string> bad;
+      if (is_float) bad = {"nan", "NaN", "inf", "-inf", "1e999"};
+      if (is_unsigned) bad = {"-1", "-1e3"};
+      floats += is_float;
+      unsigneds += is_unsigned;
+      for (const std::string& value : bad) {
+        INFO(command << " " << option << " " << value);
+        std::vector<std::string> args = {command};
+        args.insert(args.end(), required.begin(), required.end());
+        args.insert(args.end(), {option, value});
+        const RunResult r = run_clrt(args);
+        // (An option with a range refuses infinities and negative numbers
+        // by its range already; NaN passes every range check.)
+        if (value == "nan" || value == "NaN")
+          check_error(r, {option, "expected a finite number (got \"" + value + "\")"});
+        else
+          check_error(r, {option});
+      }
+    }
+  }
+  CHECK(floats >= 5);     // --adaptive, --fail-percent, --fill, --max-launch-ms, ...
+  CHECK(unsigneds >= 2);  // --seed, --spheres
+  CHECK(dir.entries().empty());
+  // The two that got through before, with the rule's own messages.
+  check_error(run_clrt({"compare", scene, "--fail-percent", "nan"}),
+              {"--fail-percent: expected a finite number (got \"nan\")"});
+  check_error(run_clrt({"generate", "--seed", "-1", "-o", dir / "seed.json"}),
+              {"--seed: expected a number >= 0 (got \"-1\")"});
+  CHECK(dir.entries().empty());
+  // A finite number is still a number, and a bad one still CLI11's error.
+  check_error(run_clrt({"compare", scene, "--fail-percent", "abc"}), {"--fail-percent"});
+  CHECK(run_clrt({"generate", "--seed", "0", "--spheres", "3", "-o", dir / "ok.json"}).status == 0);
 }
 
 TEST_CASE("bad --spp: one error line, exit 2, on every command that renders", "[cli][spp]") {
