@@ -3,8 +3,9 @@
 # the reference on every device `clrt devices` lists besides the default one
 # (the plain test run covers that), one run per device with CLRT_TEST_DEVICE
 # set to its index. Multi-device tests stay on the default device: they pick
-# their devices themselves; so do the [cli] tests, which run the clrt binary
-# on its default device (tagged [opencl] because they need one), and so do
+# their devices themselves; so do the [cli] and [mpi-cli] tests, which run
+# the clrt binary on its default device (tagged [opencl] because they need
+# one), and so do
 # tests tagged [per-case-builds], which build a program per generated case
 # (40 builds: under a minute on PoCL, ~5 minutes on rusticl with cold
 # caches, most of this script's time in CI). Tests that sweep a matrix of
@@ -22,10 +23,30 @@ if [ ${#others[@]} -eq 0 ]; then
   echo "every_device: only the default device is installed; nothing more to run"
   exit 0
 fi
+spec='[opencl]~[multidevice]~[cli]~[mpi-cli]~[per-case-builds]'
+# One process per core, each with every n-th test: a driver's compiler
+# (rusticl's) runs on one thread, so one process would leave the other
+# cores idle. (Names go to Catch2's --input-file with its test-spec
+# characters escaped, as CTest's registration escapes them.)
+jobs=$(nproc 2>/dev/null || echo 1)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$tests" "$spec" --list-test-names-only | sed -e '/^$/d' -e 's/[][,\\]/\\&/g' >"$work/names" || true
+[ -s "$work/names" ] || { echo "every_device: no test matches $spec"; exit 1; }
+awk -v n="$jobs" -v dir="$work" '{ print > (dir "/part" (NR % n)) }' "$work/names"
+parts=("$work"/part*)
 status=0
 for index in "${others[@]}"; do
   echo "== OpenCL tests on device $index: $("$clrt" devices | awk -v i="$index" '$1 == i {$1=""; print}' | cut -c1-90)"
-  CLRT_TEST_DEVICE=$index CLRT_TEST_BUILDS=default "$tests" '[opencl]~[multidevice]~[cli]~[per-case-builds]' ||
-    status=1
+  pids=()
+  for part in "${parts[@]}"; do
+    CLRT_TEST_DEVICE=$index CLRT_TEST_BUILDS=default "$tests" --input-file "$part" >"$part.log" 2>&1 &
+    pids+=($!)
+  done
+  for k in "${!pids[@]}"; do wait "${pids[$k]}" || status=1; done
+  for part in "${parts[@]}"; do
+    echo "-- $(wc -l <"$part") of them in one process:"
+    cat "$part.log"
+  done
 done
 exit $status
