@@ -40,7 +40,7 @@ for index in "${others[@]}"; do
   echo "== OpenCL tests on device $index: $("$clrt" devices | awk -v i="$index" '$1 == i {$1=""; print}' | cut -c1-90)"
   pids=()
   for part in "${parts[@]}"; do
-    CLRT_TEST_DEVICE=$index CLRT_TEST_BUILDS=default "$tests" --input-file "$part" >"$part.log" 2>&1 &
+    CLRT_TEST_DEVICE=$index CLRT_TEST_BUILDS=default "$tests" --input-file "$part" --durations yes >"$part.log" 2>&1 &
     pids+=($!)
   done
   for k in "${!pids[@]}"; do wait "${pids[$k]}" || status=1; done

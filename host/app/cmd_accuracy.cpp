@@ -53,6 +53,12 @@ struct AccuracyOptions {
     image.validate();
     if (!plot.empty()) check_plot_output(plot);    // fail before measuring
     if (!csv.empty()) check_writable(csv, "CSV");  // fail before measuring, not after
+    std::vector<NamedOutput> all;
+    if (!csv.empty()) all.push_back({csv, "CSV"});
+    if (!plot.empty()) all.push_back({plot, "plot"});
+    if (json) all.push_back({"-", "JSON"});
+    check_distinct_outputs(all);
+    claim_stdout_if_dash(csv);
     (void)settings();
   }
   // The settings (UserError on a bad precision or variant).
@@ -82,15 +88,15 @@ void report_accuracy(const std::vector<AccuracyRow>& rows, const AccuracyOptions
     std::printf("%s\n", accuracy_json(rows, s, device, ranks).c_str());
     return;
   }
-  std::printf("device %s, %dx%d, %dx%d samples per pixel, kernel time = median of %d runs after a warm-up\n",
+  std::fprintf(report_stream(), "device %s, %dx%d, %dx%d samples per pixel, kernel time = median of %d runs after a warm-up\n",
               device.c_str(), s.width, s.height, s.spp, s.spp, s.repeat);
   if (grid)
-    std::printf(
+    std::fprintf(report_stream(), 
         "%d MPI ranks: each (scene, variant) timed on the rank that ran it, its runs back to back; ranks on "
         "one machine contend for its cores, so the times are not comparable with a one-process run\n",
         ranks);
-  std::printf("%s", o.markdown ? accuracy_markdown(rows).c_str() : accuracy_table(rows).c_str());
-  if (grid) std::printf("%s", dist::grid_share_lines(*grid).c_str());
+  std::fprintf(report_stream(), "%s", o.markdown ? accuracy_markdown(rows).c_str() : accuracy_table(rows).c_str());
+  if (grid) std::fprintf(report_stream(), "%s", dist::grid_share_lines(*grid).c_str());
 }
 
 // `clrt accuracy` launched by mpirun with several ranks: rank 0 checks the

@@ -24,10 +24,10 @@ std::string size_text(uint64_t bytes) {
   return buf;
 }
 
-std::string cache_dir_or_throw() {
-  const std::string dir = program_cache_dir();
-  if (dir.empty()) throw UserError("no program cache directory: set CLRT_CACHE_DIR, XDG_CACHE_HOME or HOME");
-  return dir;
+ProgramCacheLocation location_or_throw() {
+  ProgramCacheLocation loc = program_cache_location();
+  if (loc.configured.empty()) throw UserError(loc.problem);
+  return loc;
 }
 
 }  // namespace
@@ -38,11 +38,18 @@ void add_cache_command(CLI::App& app) {
 
   auto* info = cmd->add_subcommand("info", "Cache directory, entry count, total size and size limit");
   info->callback([] {
-    const std::string dir = cache_dir_or_throw();
+    const ProgramCacheLocation loc = location_or_throw();
     const uint64_t limit = program_cache_limit(/*strict=*/true);
-    const ProgramCacheStats s = cache_stats(dir);
+    const std::string dir = loc.path.empty() ? loc.configured : loc.path;
+    const ProgramCacheStats s = loc.problem.empty() ? cache_stats(dir) : ProgramCacheStats{};
     const char* env = std::getenv("CLRT_CACHE_MAX_SIZE");
-    std::printf("path     %s%s\n", dir.c_str(), s.exists ? "" : " (does not exist yet)");
+    const std::string state = !loc.problem.empty() ? " (unusable: " + loc.problem + "; nothing is cached)"
+                              : !s.exists          ? " (does not exist yet)"
+                                                   : "";
+    std::printf("path     %s%s\n", dir.c_str(), state.c_str());
+    if (loc.shared)
+      std::printf("shared   %s may be written by others: this user's entries are in its subdirectory above\n",
+                  loc.configured.c_str());
     std::printf("entries  %zu\n", s.entries);
     std::printf("size     %s\n", size_text(s.bytes).c_str());
     std::printf("limit    %s, %s\n", size_text(limit).c_str(),
@@ -53,7 +60,9 @@ void add_cache_command(CLI::App& app) {
 
   auto* clear = cmd->add_subcommand("clear", "Delete every cache entry (and the marks of keys never cached again)");
   clear->callback([] {
-    const std::string dir = cache_dir_or_throw();
+    const ProgramCacheLocation loc = location_or_throw();
+    if (!loc.problem.empty()) throw UserError((loc.path.empty() ? loc.configured : loc.path) + ": " + loc.problem);
+    const std::string dir = loc.path;
     const ProgramCacheCleared c = cache_clear(dir);
     std::printf(
         "removed %zu entr%s (%s)%s from %s\n", c.entries, c.entries == 1 ? "y" : "ies", size_text(c.bytes).c_str(),

@@ -17,6 +17,8 @@
 #include "util/error.hpp"
 #include "util/json_text.hpp"
 
+#include "util/output_file.hpp"
+
 namespace clrt {
 
 void add_compare_command(CLI::App& app) {
@@ -45,7 +47,14 @@ void add_compare_command(CLI::App& app) {
       o->image.height = img.height;
     }
     o->validate();
-    if (!diff->empty()) check_output_format(*diff);
+    if (!diff->empty()) {
+      check_output_format(*diff);
+      std::vector<NamedOutput> all{{*diff, "difference image"}};
+      if (!image->empty()) all.push_back({*image, "image compared"});
+      if (*as_json) all.push_back({"-", "JSON"});
+      check_distinct_outputs(all);
+      claim_stdout_if_dash(*diff);
+    }
     Scene scene = o->image.load_scene(o->scene_path);
     int depth = o->image.effective_depth(scene);
     EngineRun ref_run, cl_run;
@@ -102,37 +111,37 @@ void add_compare_command(CLI::App& app) {
       }
       std::printf("%s\n", json_text(j).c_str());
     } else {
-      std::printf(
+      std::fprintf(report_stream(), 
           "scene          %s  %dx%d  depth %d  spp %d%s  precision %s\n", o->scene_path.c_str(), o->image.width,
           o->image.height, depth, o->image.spp,
           o->image.subsample == Subsample::Off ? "" : ("  subsample " + subsample_name(o->image.subsample)).c_str(),
           classified ? o->kernel.precision.c_str() : "-");
       if (classified)
-        std::printf("device         %s\n", cl_run.device.c_str());
+        std::fprintf(report_stream(), "device         %s\n", cl_run.device.c_str());
       else
-        std::printf("image          %s\n", image->c_str());
-      std::printf("pixels differ  %zu of %zu (%.4f%%)\n", c.differ, c.pixels,
+        std::fprintf(report_stream(), "image          %s\n", image->c_str());
+      std::fprintf(report_stream(), "pixels differ  %zu of %zu (%.4f%%)\n", c.differ, c.pixels,
                   c.pixels ? 100.0 * c.differ / c.pixels : 0.0);
-      std::printf("off by > 1     %zu (%.4f%%)\n", c.off_by_gt1, c.percent_off_by_gt1());
-      std::printf("max abs error  %d levels (8-bit), %.4f (float)\n", c.max_abs_8bit, c.max_abs_float);
+      std::fprintf(report_stream(), "off by > 1     %zu (%.4f%%)\n", c.off_by_gt1, c.percent_off_by_gt1());
+      std::fprintf(report_stream(), "max abs error  %d levels (8-bit), %.4f (float)\n", c.max_abs_8bit, c.max_abs_float);
       if (c.max_abs_8bit > 0)
-        std::printf("worst pixel    (%d, %d): %d %d %d, reference %d %d %d\n", c.worst_x, c.worst_y, c.worst_test[0],
+        std::fprintf(report_stream(), "worst pixel    (%d, %d): %d %d %d, reference %d %d %d\n", c.worst_x, c.worst_y, c.worst_test[0],
                     c.worst_test[1], c.worst_test[2], c.worst_reference[0], c.worst_reference[1], c.worst_reference[2]);
-      std::printf("RMSE / PSNR    8-bit %.4f / %s dB, float %.4f / %s dB\n", c.rmse_8bit,
+      std::fprintf(report_stream(), "RMSE / PSNR    8-bit %.4f / %s dB, float %.4f / %s dB\n", c.rmse_8bit,
                   format_psnr(c.psnr_8bit).c_str(), c.rmse_float, format_psnr(c.psnr_float).c_str());
       if (classified)
-        std::printf("flips          hit %zu, shadow %zu\n", c.hit_flips, c.shadow_flips);
+        std::fprintf(report_stream(), "flips          hit %zu, shadow %zu\n", c.hit_flips, c.shadow_flips);
       else
-        std::printf("flips          n/a (an image file has no hit/shadow data)\n");
-      std::printf("NaN/Inf pixels %zu (reference: %zu)\n", c.nan_inf, c.nan_inf_reference);
+        std::fprintf(report_stream(), "flips          n/a (an image file has no hit/shadow data)\n");
+      std::fprintf(report_stream(), "NaN/Inf pixels %zu (reference: %zu)\n", c.nan_inf, c.nan_inf_reference);
       if (classified)
-        std::printf(
+        std::fprintf(report_stream(), 
             "time           reference %.1f ms; opencl kernel %.2f ms%s, build %.1f ms%s, render total %.1f ms\n",
             ref_run.wall_ms, cl_run.frame.kernel_ms,
             time_source_note(cl_run.frame.host_timed_launches, cl_run.frame.launches).c_str(), cl_run.frame.build_ms,
             cl_run.frame.build_cached ? " (cached)" : "", cl_run.wall_ms);
       if (limits->any())
-        std::printf("verdict        %s\n", verdict.pass ? "PASS" : ("FAIL: " + verdict.reason).c_str());
+        std::fprintf(report_stream(), "verdict        %s\n", verdict.pass ? "PASS" : ("FAIL: " + verdict.reason).c_str());
     }
     if (!verdict.pass) throw CheckFailure("compare: " + verdict.reason);
   });

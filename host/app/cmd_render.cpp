@@ -84,9 +84,13 @@ void render_frames(const RenderOptions& o, const std::vector<std::string>& paths
   std::vector<Scene> scenes;  // rank 0's
   dist::share_from_root(comm, [&] {
     if (across && o.engine != "opencl") throw UserError("--engine " + o.engine + " does not run across MPI ranks");
-    for (const std::string& p : paths)
+    std::vector<NamedOutput> frames;
+    for (const std::string& p : paths) {
       if (check_output_format(p, format).kind != OutputKind::File)
         throw UserError(p + ": several frames are written to files, not to standard output, a device or a FIFO");
+      frames.push_back({p, "frame " + std::to_string(frames.size())});
+    }
+    check_distinct_outputs(frames);  // f_1.png -> f_0.png would replace frame 0
     scenes.reserve(o.scene_paths.size());
     for (const std::string& path : o.scene_paths) scenes.push_back(o.image.load_scene(path));
     return dist::Bytes{};

@@ -78,6 +78,11 @@ void add_scaling_command(CLI::App& app) {
     settings->counts = parse_counts(*counts);
     if (!plot->empty()) check_plot_output(*plot);  // fail before measuring
     if (!csv->empty()) check_writable(*csv, "CSV");
+    std::vector<NamedOutput> all;
+    if (!csv->empty()) all.push_back({*csv, "CSV"});
+    if (!plot->empty()) all.push_back({*plot, "plot"});
+    check_distinct_outputs(all);
+    claim_stdout_if_dash(*csv);
     settings->bench.width = image->width;
     settings->bench.height = image->height;
     settings->bench.depth = image->depth;  // kSceneDepth (-1): the scenes' own (3)
@@ -94,11 +99,11 @@ void add_scaling_command(CLI::App& app) {
     print_scaling(rows);
     if (!csv->empty()) {
       write_text_atomic(*csv, scaling_csv(rows), "CSV");
-      std::printf("wrote %s\n", csv->c_str());
+      std::fprintf(report_stream(), "wrote %s\n", csv->c_str());
     }
     if (!plot->empty()) {
       plot_scaling(rows, *plot, "frame time against spheres");
-      std::printf("wrote %s\n", plot->c_str());
+      std::fprintf(report_stream(), "wrote %s\n", plot->c_str());
     }
   });
 }

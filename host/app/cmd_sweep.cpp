@@ -32,7 +32,7 @@ void report_sweep(const std::vector<SweepRow>& rows, const std::string& scene_pa
   const int ranks = grid ? int(grid->ranks.size()) : 1;
   if (!out.json) {
     if (grid)
-      std::printf(
+      std::fprintf(report_stream(), 
           "%d MPI ranks: each (depth, device) timed on the rank that ran it; ranks on one machine contend "
           "for its cores, so the times are not comparable with a one-process sweep\n",
           ranks);
@@ -41,14 +41,14 @@ void report_sweep(const std::vector<SweepRow>& rows, const std::string& scene_pa
   // With --json, standard output holds the JSON object alone.
   if (!out.csv.empty()) {
     write_text_atomic(out.csv, sweep_csv(rows), "CSV");
-    if (!out.json) std::printf("wrote %s\n", out.csv.c_str());
+    if (!out.json) std::fprintf(report_stream(), "wrote %s\n", out.csv.c_str());
   }
   if (!out.plot.empty()) {
     std::string second = plot_sweep(rows, out.plot, scene_path);
-    if (!out.json) std::printf("wrote %s and %s\n", out.plot.c_str(), second.c_str());
+    if (!out.json) std::fprintf(report_stream(), "wrote %s and %s\n", out.plot.c_str(), second.c_str());
   }
   if (out.json) std::printf("%s\n", json_text(sweep_json(rows, scene_path, ranks)).c_str());
-  if (grid && !out.json) std::printf("%s", dist::grid_share_lines(*grid).c_str());
+  if (grid && !out.json) std::fprintf(report_stream(), "%s", dist::grid_share_lines(*grid).c_str());
 }
 
 // Outputs checked before measuring (both plots).
@@ -58,6 +58,12 @@ void check_sweep_outputs(const SweepOutputs& out) {
     check_plot_output(rays_plot_path(out.plot));
   }
   if (!out.csv.empty()) check_writable(out.csv, "CSV");
+  std::vector<NamedOutput> all;
+  if (!out.csv.empty()) all.push_back({out.csv, "CSV"});
+  if (!out.plot.empty()) all.push_back({out.plot, "plot"}), all.push_back({rays_plot_path(out.plot), "rays plot"});
+  if (out.json) all.push_back({"-", "JSON"});
+  check_distinct_outputs(all);
+  claim_stdout_if_dash(out.csv);
 }
 
 // `clrt sweep` launched by mpirun with several ranks: rank 0 checks the

@@ -12,6 +12,7 @@
 #include "cl/cl.hpp"
 #include "dist/communicator.hpp"
 #include "dist/job.hpp"
+#include "util/doing.hpp"
 #include "util/edit_distance.hpp"
 #include "util/error.hpp"
 #include "util/log.hpp"
@@ -206,6 +207,11 @@ int main(int argc, char** argv) {
     return clrt::kExitBadInput;
   } catch (const cl::Error& e) {
     report(clrt::describe(e), "error", false);
+    return clrt::kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // Bad input too: a scene or size that needs more memory than there is.
+    const std::string step = clrt::failed_step();
+    report("out of memory" + (step.empty() ? std::string() : " while " + step), "error", false);
     return clrt::kExitBadInput;
   } catch (const std::exception& e) {
     report(e.what(), "internal error", false);

@@ -9,6 +9,8 @@
 #include "image/plot.hpp"
 #include "util/csv.hpp"
 
+#include "util/output_file.hpp"
+
 namespace clrt {
 
 std::string scaling_csv(const std::vector<ScalingRow>& rows) {
@@ -55,9 +57,9 @@ std::string scaling_csv(const std::vector<ScalingRow>& rows) {
 void print_scaling(const std::vector<ScalingRow>& rows) {
   if (rows.empty()) return;
   const BenchResult& first = rows.front().bench;
-  std::printf("%dx%d, depth %d, on %s; frame = every launch + download (median of N, mean ± sd)\n", first.width,
+  std::fprintf(report_stream(), "%dx%d, depth %d, on %s; frame = every launch + download (median of N, mean ± sd)\n", first.width,
               first.height, first.depth, first.device.c_str());
-  std::printf("%9s %9s %8s %9s %7s %22s %9s %22s %9s %16s\n", "spheres", "parse_ms", "s/Msph", "bvh_ms", "bvh_MiB",
+  std::fprintf(report_stream(), "%9s %9s %8s %9s %7s %22s %9s %22s %9s %16s\n", "spheres", "parse_ms", "s/Msph", "bvh_ms", "bvh_MiB",
               "clrt frame ms", "ns/ray", "Embree frame ms", "ns/ray", "Embree/clrt");
   for (const auto& r : rows) {
     const BenchResult& b = r.bench;
@@ -71,16 +73,16 @@ void print_scaling(const std::vector<ScalingRow>& rows) {
       std::snprintf(embree_ms, sizeof embree_ms, "-");
       std::snprintf(ratio, sizeof ratio, "-");
     }
-    std::printf("%9zu %9.1f %8.2f %9.1f %7.2f %22s %9.0f %22s %9.0f %16s\n", r.spheres, r.parse_ms, per_million,
+    std::fprintf(report_stream(), "%9zu %9.1f %8.2f %9.1f %7.2f %22s %9.0f %22s %9.0f %16s\n", r.spheres, r.parse_ms, per_million,
                 b.bvh_build_ms, double(b.bvh_bytes) / (1 << 20), clrt_ms, r.ns_per_ray, embree_ms, r.embree_ns_per_ray,
                 ratio);
   }
-  std::printf(
+  std::fprintf(report_stream(), 
       "Embree/clrt: Embree frame / clrt frame per round (> 1: clrt is faster); ns/ray: frame wall time / "
       "rays traced\n");
   for (const auto& r : rows)
     if (r.bench.host_timed_launches) {
-      std::printf("kernel times%s\n", time_source_note(r.bench.host_timed_launches, r.bench.launches).c_str());
+      std::fprintf(report_stream(), "kernel times%s\n", time_source_note(r.bench.host_timed_launches, r.bench.launches).c_str());
       break;
     }
 }

@@ -12,6 +12,8 @@
 #include "image/plot.hpp"
 #include "util/csv.hpp"
 
+#include "util/output_file.hpp"
+
 namespace clrt {
 
 namespace {
@@ -97,18 +99,18 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepRow>& rows, const std::
 }
 
 void print_sweep(const std::vector<SweepRow>& rows) {
-  std::printf("%-5s %10s %9s %12s %9s %9s %9s %8s %7s %8s %9s %9s  %s\n", "depth", "kernel_ms", "delta_ms", "rays",
+  std::fprintf(report_stream(), "%-5s %10s %9s %12s %9s %9s %9s %8s %7s %8s %9s %9s  %s\n", "depth", "kernel_ms", "delta_ms", "rays",
               "Mrays/s", "ref_ms", "vs_ref", "differ", "off>1", "rmse", "changed", "chg_rmse", "device");
   for (const auto& r : rows) {
     const BenchResult& b = r.bench;
-    std::printf("%-5d %10.2f %+9.2f %12llu %9.1f %9.1f %8.1fx %8zu %7zu %8.4f %9zu %9.4f  %s\n", r.depth,
+    std::fprintf(report_stream(), "%-5d %10.2f %+9.2f %12llu %9.1f %9.1f %8.1fx %8zu %7zu %8.4f %9zu %9.4f  %s\n", r.depth,
                 b.kernel.median, r.kernel_ms_delta, (unsigned long long)b.rays.total(), b.mrays_per_s, r.reference_ms,
                 r.speedup_vs_reference, r.error.differ, r.error.off_by_gt1, r.error.rmse_8bit, r.change.differ,
                 r.change.rmse_8bit, r.device.c_str());
   }
   for (const auto& r : rows)
     if (r.bench.host_timed_launches) {
-      std::printf("kernel_ms of %s%s\n", r.device.c_str(),
+      std::fprintf(report_stream(), "kernel_ms of %s%s\n", r.device.c_str(),
                   time_source_note(r.bench.host_timed_launches, r.bench.launches).c_str());
       break;
     }

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -21,6 +22,7 @@
 
 #include "util/error.hpp"
 #include "util/log.hpp"
+#include "util/output_file.hpp"
 
 namespace clrt {
 namespace {
@@ -87,32 +89,125 @@ std::string program_cache_dir() {
   return "";
 }
 
-std::string cache_entry_path(const ProgramCacheKey& key) {
-  std::string dir = program_cache_dir();
-  return dir.empty() ? "" : dir + "/" + key.hash() + ".bin";
+namespace {
+
+bool owned_private(const struct stat& st, mode_t forbidden) {
+  return S_ISDIR(st.st_mode) && st.st_uid == ::geteuid() && (st.st_mode & forbidden) == 0;
 }
 
-bool cache_read_entry(const std::string& path, std::string& key_text, std::vector<unsigned char>& binary) {
-  // A regular file, never through a symbolic link (a FIFO or device named
-  // like an entry would block or never end).
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) return false;
-  struct stat st {};
-  std::string data;
-  bool ok = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && uint64_t(st.st_size) <= kMaxEntryBytes;
-  if (ok) {
-    data.resize(size_t(st.st_size));
-    size_t got = 0;
-    while (got < data.size()) {
-      const ssize_t n = ::read(fd, &data[got], data.size() - got);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;
-      got += size_t(n);
-    }
-    ok = got == data.size();
+// The open directory the entries live in (program_cache.hpp, "Directory"):
+// the configured one when it is this user's and nobody else may write it,
+// else its private subdirectory. Every file below is named relative to fd,
+// so nothing is looked up again through a path someone could change.
+struct EntryDir {
+  int fd = -1;
+  ProgramCacheLocation where;
+  EntryDir(const EntryDir&) = delete;
+  EntryDir& operator=(const EntryDir&) = delete;
+  explicit EntryDir(bool create) : where(locate(create, &fd)) {}
+  ~EntryDir() {
+    if (fd >= 0) ::close(fd);
   }
-  ::close(fd);
-  if (!ok) return false;
+  static ProgramCacheLocation locate(bool create, int* fd_out);
+};
+
+ProgramCacheLocation EntryDir::locate(bool create, int* fd_out) {
+  ProgramCacheLocation loc;
+  loc.configured = program_cache_dir();
+  if (loc.configured.empty()) {
+    loc.problem = "no program cache directory: set CLRT_CACHE_DIR, XDG_CACHE_HOME or HOME";
+    return loc;
+  }
+  std::error_code ec;
+  if (create) {
+    const fs::path parent = fs::path(loc.configured).parent_path();
+    if (!parent.empty()) fs::create_directories(parent, ec);
+    ::mkdir(loc.configured.c_str(), 0700);
+  }
+  const int top = ::open(loc.configured.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (top < 0) {
+    const int e = errno;
+    if (e == ENOENT || e == ENOTDIR) {
+      // Not there: created by the first store - unless something in the way
+      // makes that impossible (HOME a regular file, a parent not a folder).
+      struct stat st {};
+      fs::path p = fs::path(loc.configured).parent_path();
+      while (!p.empty() && ::stat(p.c_str(), &st) != 0 && p != p.parent_path()) p = p.parent_path();
+      if (!p.empty() && ::stat(p.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+        loc.problem = "cannot be created: " + p.string() + " is not a directory";
+      else if (e == ENOTDIR)
+        loc.problem = "cannot be created: it is not a directory";
+      else
+        loc.missing = true, loc.path = loc.configured;
+    } else {
+      loc.problem = std::strerror(e);
+    }
+    return loc;
+  }
+  struct stat st {};
+  if (::fstat(top, &st) == 0 && owned_private(st, S_IWGRP | S_IWOTH)) {
+    loc.path = loc.configured;
+    *fd_out = top;
+    return loc;
+  }
+  // A directory others can write (a shared CLRT_CACHE_DIR, /tmp) or another
+  // user's: anyone there could plant links or FIFOs at the entries' names,
+  // so the entries go to a subdirectory only this user can use.
+  const std::string name = "clrt-" + std::to_string(::geteuid());
+  loc.shared = true;
+  loc.path = loc.configured + "/" + name;
+  if (create) ::mkdirat(top, name.c_str(), 0700);
+  const int sub = ::openat(top, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  const int e = errno;
+  ::close(top);
+  if (sub < 0) {
+    loc.missing = e == ENOENT;
+    if (!loc.missing) loc.problem = std::string("it is not a directory of this user (") + std::strerror(e) + ")";
+    return loc;
+  }
+  if (::fstat(sub, &st) != 0 || !owned_private(st, S_IRWXG | S_IRWXO)) {
+    ::close(sub);
+    loc.problem = "it belongs to another user, or others may use it";
+    return loc;
+  }
+  *fd_out = sub;
+  return loc;
+}
+
+// Opens `name` beneath `dirfd` for reading when it is a regular file of this
+// user: never through a link, never blocking (a FIFO or device there is
+// refused, not waited on). -1 otherwise.
+int open_own_file(int dirfd, const std::string& name, struct stat& st) {
+  const int fd = ::openat(dirfd, name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
+  if (fd < 0) return -1;
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_uid != ::geteuid()) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+// Whether anything - a file, a link, a FIFO - has the name (a mark that is
+// present in any form counts: the safe answer for ".bad").
+bool name_taken(int dirfd, const std::string& name) {
+  struct stat st {};
+  return ::fstatat(dirfd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0;
+}
+
+bool read_all(int fd, std::string& data, uint64_t max_bytes, const struct stat& st) {
+  if (uint64_t(st.st_size) > max_bytes) return false;
+  data.resize(size_t(st.st_size));
+  size_t got = 0;
+  while (got < data.size()) {
+    const ssize_t n = ::read(fd, &data[got], data.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    got += size_t(n);
+  }
+  return got == data.size();
+}
+
+bool parse_entry(const std::string& data, std::string& key_text, std::vector<unsigned char>& binary) {
   if (data.size() < sizeof kMagic || data.compare(0, sizeof kMagic, kMagic, sizeof kMagic) != 0) return false;
   size_t pos = sizeof kMagic;
   uint64_t klen = 0, blen = 0, sum = 0;
@@ -125,59 +220,101 @@ bool cache_read_entry(const std::string& path, std::string& key_text, std::vecto
   return get_u64(data, pos, sum) && pos == data.size() && sum == fnv1a(binary.data(), binary.size());
 }
 
-std::optional<std::vector<unsigned char>> cache_load(const ProgramCacheKey& key) {
-  std::string path = cache_entry_path(key), text;
-  std::vector<unsigned char> bin;
-  if (path.empty() || !cache_read_entry(path, text, bin)) return std::nullopt;
-  if (text != key.text()) return std::nullopt;  // a hash collision or another key
-  // Used: the entry becomes the newest, the last the size limit evicts.
-  ::utimensat(AT_FDCWD, path.c_str(), nullptr, AT_SYMLINK_NOFOLLOW);
-  return bin;
+bool read_entry_at(int dirfd, const std::string& name, std::string& key_text, std::vector<unsigned char>& binary) {
+  struct stat st {};
+  const int fd = open_own_file(dirfd, name, st);
+  if (fd < 0) return false;
+  std::string data;
+  const bool ok = read_all(fd, data, kMaxEntryBytes, st);
+  ::close(fd);
+  return ok && parse_entry(data, key_text, binary);
 }
 
-bool cache_write_entry(const std::string& path, const std::string& key_text, const std::vector<unsigned char>& binary) {
+std::string entry_body(const std::string& key_text, const std::vector<unsigned char>& binary) {
   std::string body(kMagic, sizeof kMagic);
   put_u64(body, key_text.size());
   body += key_text;
   put_u64(body, binary.size());
   body.append(reinterpret_cast<const char*>(binary.data()), binary.size());
   put_u64(body, fnv1a(binary.data(), binary.size()));
-  // Unique temporary name in the same directory, then an atomic rename.
-  static std::atomic<unsigned> serial{0};
-  std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(serial++);
-  bool ok = false;
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (out) {
-      out.write(body.data(), static_cast<std::streamsize>(body.size()));
-      out.close();
-      ok = static_cast<bool>(out);
-    }
-  }
-  std::error_code ec;
-  if (ok) {
-    fs::rename(tmp, path, ec);
-    ok = !ec;
-  }
-  if (!ok) fs::remove(tmp, ec);
+  return body;
+}
+
+// Runs `f(dirfd, name)` on the parent directory of `path` (the path-based
+// forms, for tests): the last component is never followed.
+template <class F>
+bool at_path(const std::string& path, F f) {
+  const fs::path p(path);
+  const std::string dir = p.parent_path().empty() ? "." : p.parent_path().string();
+  const int dirfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dirfd < 0) return false;
+  const bool ok = f(dirfd, dir, p.filename().string());
+  ::close(dirfd);
   return ok;
 }
 
+}  // namespace
+
+ProgramCacheLocation program_cache_location() {
+  int fd = -1;
+  ProgramCacheLocation loc = EntryDir::locate(false, &fd);
+  if (fd >= 0) ::close(fd);
+  return loc;
+}
+
+std::string cache_entry_path(const ProgramCacheKey& key) {
+  const ProgramCacheLocation loc = program_cache_location();
+  return loc.path.empty() ? "" : loc.path + "/" + key.hash() + ".bin";
+}
+
+bool cache_read_entry(const std::string& path, std::string& key_text, std::vector<unsigned char>& binary) {
+  return at_path(path, [&](int dirfd, const std::string&, const std::string& name) {
+    return read_entry_at(dirfd, name, key_text, binary);
+  });
+}
+
+bool cache_write_entry(const std::string& path, const std::string& key_text, const std::vector<unsigned char>& binary) {
+  return at_path(path, [&](int dirfd, const std::string& dir, const std::string& name) {
+    return write_file_at(dirfd, dir, name, entry_body(key_text, binary), 0600, false).empty();
+  });
+}
+
+std::optional<std::vector<unsigned char>> cache_load(const ProgramCacheKey& key) {
+  EntryDir dir(false);
+  if (dir.fd < 0) return std::nullopt;
+  const std::string name = key.hash() + ".bin";
+  std::string text;
+  std::vector<unsigned char> bin;
+  if (!read_entry_at(dir.fd, name, text, bin)) return std::nullopt;
+  if (text != key.text()) return std::nullopt;  // a hash collision or another key
+  // Used: the entry becomes the newest, the last the size limit evicts.
+  ::utimensat(dir.fd, name.c_str(), nullptr, AT_SYMLINK_NOFOLLOW);
+  return bin;
+}
+
 bool cache_store(const ProgramCacheKey& key, const std::vector<unsigned char>& binary) {
-  static bool warned = false;
-  std::string path = cache_entry_path(key);
-  if (path.empty() || binary.empty()) return false;
-  std::error_code ec;
-  fs::create_directories(program_cache_dir(), ec);
-  if (fs::exists(path + ".bad", ec)) return false;  // never again for this key (cache_begin_load)
-  const uint64_t limit = program_cache_limit();
-  if (binary.size() > limit) return false;  // it would be the first to go
-  if (cache_write_entry(path, key.text(), binary)) {
-    cache_evict(program_cache_dir(), limit);
-    return true;
+  static std::once_flag warned;
+  if (binary.empty()) return false;
+  EntryDir dir(true);
+  const std::string name = key.hash() + ".bin";
+  std::string why = dir.where.problem;
+  if (dir.fd >= 0) {
+    if (name_taken(dir.fd, name + ".bad")) return false;  // never again for this key (cache_begin_load)
+    const uint64_t limit = program_cache_limit();
+    if (binary.size() > limit) return false;  // it would be the first to go
+    // No fsync: a torn entry fails its checksum and is rebuilt.
+    why = write_file_at(dir.fd, dir.where.path, name, entry_body(key.text(), binary), 0600, false);
+    if (why.empty()) {
+      cache_evict(dir.where.path, limit);
+      return true;
+    }
+  } else if (why.empty()) {
+    why = "cannot create " + dir.where.configured;
   }
-  if (!warned) log_message(LogLevel::Warning, "cannot write the program cache entry " + path);
-  warned = true;
+  std::call_once(warned, [&] {
+    log_message(LogLevel::Warning, "program cache: cannot store in " +
+                                       (dir.where.path.empty() ? dir.where.configured : dir.where.path) + ": " + why);
+  });
   return false;
 }
 
@@ -188,14 +325,29 @@ bool process_alive(long pid) {
   return ::kill(pid_t(pid), 0) == 0 || errno == EPERM;
 }
 
+// The pid in a load marker; 0 when it is not a small regular file of this
+// user holding one.
+long read_marker_pid(int dirfd, const std::string& name) {
+  struct stat st {};
+  const int fd = open_own_file(dirfd, name, st);
+  if (fd < 0) return 0;
+  std::string text;
+  const bool ok = read_all(fd, text, 64, st);
+  ::close(fd);
+  if (!ok) return 0;
+  char* end = nullptr;
+  const long pid = std::strtol(text.c_str(), &end, 10);
+  return end != text.c_str() && pid > 0 ? pid : 0;
+}
+
 }  // namespace
 
 bool cache_begin_load(const ProgramCacheKey& key, std::string* note) {
-  const std::string path = cache_entry_path(key);
-  if (path.empty()) return false;
-  std::error_code ec;
-  if (fs::exists(path + ".bad", ec)) return false;
-  const std::string marker = path + ".loading";
+  EntryDir dir(false);
+  if (dir.fd < 0) return false;
+  const std::string entry = key.hash() + ".bin";
+  if (name_taken(dir.fd, entry + ".bad")) return false;
+  const std::string marker = entry + ".loading";
   // The marker appears with its pid already in it (written to a private
   // name, then linked: link() fails with EEXIST like O_EXCL), so a process
   // that finds it never reads it empty - ranks of an MPI job on one machine
@@ -203,43 +355,46 @@ bool cache_begin_load(const ProgramCacheKey& key, std::string* note) {
   const std::string pid = std::to_string(::getpid()) + "\n";
   const std::string own = marker + "." + std::to_string(::getpid());
   const int flags = O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW;
-  int fd = ::open(own.c_str(), flags, 0644);
+  int fd = ::openat(dir.fd, own.c_str(), flags, 0600);
   if (fd < 0 && errno == EEXIST) {  // left by a killed process whose pid this one reuses
-    ::unlink(own.c_str());
-    fd = ::open(own.c_str(), flags, 0644);
+    ::unlinkat(dir.fd, own.c_str(), 0);
+    fd = ::openat(dir.fd, own.c_str(), flags, 0600);
   }
   if (fd < 0) return false;  // cannot mark: do not load unguarded
   const bool written = ::write(fd, pid.data(), pid.size()) == ssize_t(pid.size());
   ::close(fd);
-  const int linked = written ? ::link(own.c_str(), marker.c_str()) : -1;
+  const int linked = written ? ::linkat(dir.fd, own.c_str(), dir.fd, marker.c_str(), 0) : -1;
   const int link_errno = errno;
-  ::unlink(own.c_str());
+  ::unlinkat(dir.fd, own.c_str(), 0);
   if (linked == 0) return true;
   if (!written || link_errno != EEXIST) return false;
-  long other = 0;
-  {
-    std::ifstream in(marker);
-    in >> other;
-  }
-  if (other <= 0) return false;            // unreadable (a marker of an older clrt being written): build from source
+  const long other = read_marker_pid(dir.fd, marker);
+  if (other <= 0) return false;            // not a marker this user wrote: build from source
   if (process_alive(other)) return false;  // being loaded right now: build from source
   // The process that loaded this entry last did not finish: it crashed in
-  // the driver. Never load this entry again.
-  fs::remove(path, ec);
-  std::ofstream(path + ".bad") << "a load of this entry crashed process " << other << "\n";
-  fs::remove(marker, ec);
+  // the driver. Never load this entry again (the mark is created, never
+  // opened through whatever may have its name).
+  ::unlinkat(dir.fd, entry.c_str(), 0);
+  const std::string why = "a load of this entry crashed process " + std::to_string(other) + "\n";
+  const int bad = ::openat(dir.fd, (entry + ".bad").c_str(), flags, 0600);
+  if (bad >= 0) {
+    const ssize_t ignored = ::write(bad, why.data(), why.size());
+    (void)ignored;
+    ::close(bad);
+  }
+  ::unlinkat(dir.fd, marker.c_str(), 0);
   if (note)
-    *note = "discarded the cached binary " + path + ": loading it crashed an earlier run (pid " +
-            std::to_string(other) + ")";
+    *note = "discarded the cached binary " + dir.where.path + "/" + entry +
+            ": loading it crashed an earlier run (pid " + std::to_string(other) + ")";
   return false;
 }
 
 void cache_end_load(const ProgramCacheKey& key, bool ok) {
-  const std::string path = cache_entry_path(key);
-  if (path.empty()) return;
-  std::error_code ec;
-  if (!ok) fs::remove(path, ec);
-  fs::remove(path + ".loading", ec);
+  EntryDir dir(false);
+  if (dir.fd < 0) return;
+  const std::string entry = key.hash() + ".bin";
+  if (!ok) ::unlinkat(dir.fd, entry.c_str(), 0);
+  ::unlinkat(dir.fd, (entry + ".loading").c_str(), 0);
 }
 
 // ---- size limit, info, clear ----------------------------------------------

@@ -6,9 +6,17 @@
 // binary, so a hash collision, a truncated or a corrupted entry is detected
 // on load and the caller falls back to a real build.
 //
-// Directory: $CLRT_CACHE_DIR, else $XDG_CACHE_HOME/clrt, else ~/.cache/clrt.
-// Entries are written to a temporary file and renamed into place, so
-// concurrent clrt processes never see a half-written entry.
+// Directory: $CLRT_CACHE_DIR, else $XDG_CACHE_HOME/clrt, else ~/.cache/clrt
+// (created mode 0700). When that directory is not this user's own or others
+// may write it (a shared CLRT_CACHE_DIR, /tmp), the entries go to its
+// subdirectory clrt-<uid>, created 0700 and used only while it is a real
+// directory of this user that nobody else may enter; otherwise nothing is
+// cached (a warning, once). Every file is opened beneath that directory's
+// descriptor, never through a link, never blocking (a FIFO or device at a
+// name is refused), and read only when it is a regular file of this user.
+// Entries are written to a temporary file (random name, O_EXCL) and renamed
+// into place, so concurrent clrt processes never see a half-written entry
+// and a name planted by someone else is never written through.
 //
 // Size: after each store, the oldest entries (by modification time; a load
 // refreshes it) are deleted until the entries total at most the limit,
@@ -30,8 +38,19 @@ struct ProgramCacheKey {
   std::string hash() const;  // 16 hex digits of text()'s 64-bit FNV-1a hash
 };
 
-// "" when no directory can be determined (no env variables, no HOME).
+// The configured directory; "" when none can be determined (no env
+// variables, no HOME).
 std::string program_cache_dir();
+
+// Where the entries are, found without creating anything.
+struct ProgramCacheLocation {
+  std::string configured;  // program_cache_dir()
+  std::string path;        // the entries' directory ("" when there is none)
+  bool shared = false;     // path is configured's private clrt-<uid> subdirectory
+  bool missing = false;    // not created yet (the first store creates it)
+  std::string problem;     // why there can be no cache here ("" when none)
+};
+ProgramCacheLocation program_cache_location();
 
 // The binary stored for `key`, or nothing (missing, unreadable, corrupted,
 // other key). Never throws.

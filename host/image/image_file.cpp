@@ -3,16 +3,23 @@
 // atomically, read as untrusted input.
 #include "image/image_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "image/image_io.hpp"
+#include "image/pnm_header.hpp"
 #include "util/build_features.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
@@ -261,6 +268,28 @@ ImageMetadata read_metadata(const std::string& path, const std::vector<std::stri
 
 Image read_image(const std::string& path, int max_edge, long long max_pixels) {
   std::string err;
+  {
+    // PPM and PFM headers are checked here, in both builds (pnm_header.hpp):
+    // OpenImageIO reads a maxval of 0 as white and a PFM scale of NaN as is.
+    // Only a regular file: opening a FIFO must not block (O_NONBLOCK), and
+    // what is not one is the imaging module's to refuse.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+    struct stat st {};
+    std::string head;
+    if (fd >= 0 && ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+      head.resize(64 << 10);  // a header with its comments
+      ssize_t n = 0;
+      do n = ::read(fd, &head[0], head.size());
+      while (n < 0 && errno == EINTR);
+      head.resize(n > 0 ? size_t(n) : 0);
+    }
+    if (fd >= 0) ::close(fd);
+    if (head.size() >= 2 && has_pnm_magic(head.data())) {
+      std::istringstream file(head);
+      PnmHeader header;
+      if (!parse_pnm_header(file, header, err)) throw UserError(path + ": cannot read image: " + err);
+    }
+  }
   auto in = imageio::module().open(path, &err);
   if (!in) throw UserError(path + ": cannot read image: " + err);
   const int w = in->width(), h = in->height(), nch = in->channels();

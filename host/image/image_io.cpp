@@ -2,9 +2,12 @@
 #include "image/image_io.hpp"
 
 #include <dlfcn.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -41,11 +44,35 @@ std::string where_looked(const std::vector<std::string>& candidates) {
   return s;
 }
 
+// Why code at `path` could be someone else's: the file or its folder
+// belongs to another user than this one or root, or others may write it.
+// "" when neither holds.
+std::string planted_risk(const std::string& path) {
+  const std::filesystem::path p(path);
+  for (const std::string& f : {path, p.parent_path().empty() ? std::string(".") : p.parent_path().string()}) {
+    struct stat st {};
+    if (::stat(f.c_str(), &st) != 0) return f + ": " + std::strerror(errno);
+    if (st.st_uid != 0 && st.st_uid != ::geteuid()) return f + " belongs to another user";
+    if (st.st_mode & (S_IWGRP | S_IWOTH)) return f + " may be written by others";
+  }
+  return "";
+}
+
 // The first candidate that exists, or UserError naming every place looked.
+// One that exists but could have been planted is refused, saying why (the
+// module is code clrt runs).
 std::string find_module() {
   const std::vector<std::string> candidates = module_candidates();
-  for (const auto& c : candidates)
-    if (::access(c.c_str(), R_OK) == 0) return c;
+  for (const auto& c : candidates) {
+    if (::access(c.c_str(), R_OK) != 0) continue;
+    if (std::getenv("CLRT_IMAGEIO_MODULE") == nullptr || !*std::getenv("CLRT_IMAGEIO_MODULE")) {
+      const std::string risk = planted_risk(c);
+      if (!risk.empty())
+        throw UserError("the imaging module " + c + " is not loaded: " + risk +
+                        " (name a module you trust with CLRT_IMAGEIO_MODULE)");
+    }
+    return c;
+  }
   throw UserError("the imaging module " + std::string(kFileName) +
                   " (OpenImageIO, needed to read and write images) was not found (looked for " +
                   where_looked(candidates) + "); build the target clrt_imageio, keep it beside the clrt binary, or " +
@@ -81,8 +108,12 @@ std::vector<std::string> module_candidates() {
   const std::string from_bin = CLRT_IMAGEIO_FROM_BIN;
   if (!exe_dir.empty() && !from_bin.empty())
     out.push_back((std::filesystem::path(exe_dir) / from_bin / kFileName).lexically_normal().string());
+  // The build tree's module only for a binary inside that tree (a test or
+  // benchmark in a folder of it): a copied or installed clrt never loads a
+  // module from a build folder, which anyone may recreate once it is gone.
   const std::string build_dir = CLRT_IMAGEIO_BUILD_DIR;
-  if (!build_dir.empty() && build_dir != exe_dir) out.push_back(build_dir + "/" + kFileName);
+  if (!build_dir.empty() && !exe_dir.empty() && exe_dir.rfind(build_dir + "/", 0) == 0)
+    out.push_back(build_dir + "/" + kFileName);
   return out;
 }
 

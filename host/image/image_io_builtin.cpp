@@ -17,6 +17,7 @@
 
 #include "image/image_file.hpp"
 #include "image/image_io.hpp"
+#include "image/pnm_header.hpp"
 #include "util/build_features.hpp"
 #include "util/error.hpp"
 
@@ -99,43 +100,6 @@ class PnmReader final : public Reader {
   std::streamoff data_offset_;
 };
 
-// The header's tokens: whitespace-separated, '#' comments to the end of a
-// line skipped (PPM; PFM files have none, a '#' there is refused as a number).
-class HeaderTokens {
- public:
-  explicit HeaderTokens(std::istream& in) : in_(in) {}
-  // The next token; "" at the end of the file or for one over 64 characters.
-  std::string next() {
-    int c = in_.get();
-    while (c != EOF && (std::isspace(c) || c == '#')) {
-      if (c == '#')
-        while (c != EOF && c != '\n') c = in_.get();
-      c = in_.get();
-    }
-    std::string t;
-    while (c != EOF && !std::isspace(c)) {
-      if (t.size() == 64) return "";
-      t += char(c);
-      c = in_.get();
-    }
-    // The one whitespace character after a token is consumed with it (after
-    // the header's last token, the pixels begin); a token the file ends in
-    // is no header.
-    return c == EOF ? std::string() : t;
-  }
-
- private:
-  std::istream& in_;
-};
-
-bool parse_int(const std::string& t, long lo, long hi, long* out) {
-  if (t.empty() || t.size() > 10 || t.find_first_not_of("0123456789") != std::string::npos) return false;
-  const long v = std::stol(t);
-  if (v < lo || v > hi) return false;
-  *out = v;
-  return true;
-}
-
 std::unique_ptr<Reader> open_pnm(const std::string& path, std::string* error) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
@@ -145,45 +109,21 @@ std::unique_ptr<Reader> open_pnm(const std::string& path, std::string* error) {
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   in.seekg(0);
+  PnmHeader header;
   char magic[2] = {0, 0};
   in.read(magic, 2);
-  const bool ppm = magic[0] == 'P' && magic[1] == '6';
-  const bool pfm = magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f');
-  if (!in || (!ppm && !pfm)) {
+  in.seekg(0);
+  if (!(magic[0] == 'P' && (magic[1] == '6' || magic[1] == 'F' || magic[1] == 'f'))) {
     *error = std::string("not a binary PPM (P6) or PFM file; ") + kLeanBuildNote + ": it reads .ppm and .pfm only";
     return nullptr;
   }
-  HeaderTokens tokens(in);
-  long w = 0, h = 0, third = 0;
-  constexpr long kMaxEdge = std::numeric_limits<int>::max() / 16;
-  if (!parse_int(tokens.next(), 1, kMaxEdge, &w) || !parse_int(tokens.next(), 1, kMaxEdge, &h)) {
-    *error = "bad width or height in the header";
-    return nullptr;
-  }
-  const int channels = ppm || magic[1] == 'F' ? 3 : 1;
-  size_t sample = 0;
-  if (ppm) {
-    if (!parse_int(tokens.next(), 1, 65535, &third)) {
-      *error = "bad maxval in the header (1 to 65535)";
-      return nullptr;
-    }
-    sample = third > 255 ? 2 : 1;
-  } else {
-    const std::string t = tokens.next();
-    char* end = nullptr;
-    const double scale = t.empty() ? 0 : std::strtod(t.c_str(), &end);
-    if (t.empty() || !end || *end != '\0' || !std::isfinite(scale) || scale == 0) {
-      *error = "bad scale in the header";
-      return nullptr;
-    }
-    third = scale < 0 ? -1 : 1;
-    sample = 4;
-  }
-  const std::streamoff offset = in.tellg();
-  if (!in || offset < 0) {
-    *error = "truncated header";
-    return nullptr;
-  }
+  if (!parse_pnm_header(in, header, *error)) return nullptr;
+  const long w = header.width, h = header.height;
+  const int channels = header.channels;
+  const size_t sample = header.sample;
+  const long third = header.pfm ? (header.scale < 0 ? -1 : 1) : header.maxval;
+  const bool pfm = header.pfm;
+  const std::streamoff offset = header.pixels;
   // (w, h < 2^27: no overflow in 64 bits.)
   const unsigned long long need = (unsigned long long)w * (unsigned long long)h * unsigned(channels) * sample;
   if ((unsigned long long)(size - offset) < need) {

@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "util/doing.hpp"
+
 namespace clrt {
 namespace {
 
@@ -290,6 +292,7 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
   if (n < 1) throw std::invalid_argument("render_reference: spp must be >= 1");
   if (sampling.subsample != Subsample::Off && n != 1)
     throw std::invalid_argument("render_reference: subsampling needs spp 1");
+  const Doing doing("rendering " + std::to_string(width) + "x" + std::to_string(height) + " with the reference");
   Image img(width, height);
   Tracer tracer(scene);
   const Camera& cam = scene.camera;

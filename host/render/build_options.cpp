@@ -15,7 +15,7 @@ namespace clrt {
 
 int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev) {
   if (!cfg.specialize || cfg.precision == Precision::Fp64) return 1;
-  if (!is_cpu_type(dev.type)) return 1;
+  if (!is_cpu_type(dev.type) || simd_over_work_items(dev)) return 1;
   return dev.native_float_width >= 16 ? 16 : 8;
 }
 

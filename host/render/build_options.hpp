@@ -48,9 +48,9 @@ int packet_rows(const KernelConfig& cfg);
 
 // The lane count used when cfg.lanes is 0 on `dev`: specialized float
 // builds shade 16 pixels per work-item on CPUs whose native float vector
-// width is >= 16 (AVX-512), 8 on other CPUs, 1 on GPUs (whose work-items are
-// SIMD lanes already); generic and fp64 builds are scalar (1). Measured in
-// docs/performance.md.
+// width is >= 16 (AVX-512), 8 on other CPUs, 1 on GPUs and on llvmpipe
+// (rusticl), whose work-items are SIMD lanes already (simd_over_work_items);
+// generic and fp64 builds are scalar (1). Measured in docs/performance.md.
 int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev);
 
 // The slots of the tree walk's pending rays (trace.cl) for a scene that

@@ -11,6 +11,7 @@
 #include <thread>
 #include <utility>
 
+#include "util/doing.hpp"
 #include "util/error.hpp"
 
 namespace clrt {
@@ -251,6 +252,8 @@ class Builder {
 }  // namespace
 
 Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads) {
+  const Doing doing("building the hierarchy of " + std::to_string(scene.spheres.size()) + " spheres and " +
+                    std::to_string(scene.triangles.size()) + " triangles");
   if (scene.spheres.size() > size_t(CLRT_PRIMITIVE_INDEX_MASK))
     throw UserError("scene has " + std::to_string(scene.spheres.size()) + " spheres; the hierarchy holds at most " +
                     std::to_string(CLRT_PRIMITIVE_INDEX_MASK));

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "render/scene_buffers.hpp"
+#include "util/doing.hpp"
 #include "util/error.hpp"
 #include "util/timer.hpp"
 
@@ -36,6 +37,8 @@ void Renderer::prepare(const Scene& scene, int width, int height, int depth, Sam
     throw UserError("--spp must be in [1, " + std::to_string(CLRT_MAX_SPP) + "] (got " + std::to_string(spp) + ")");
   if (!(sampling.adaptive_threshold <= 1e6))  // negative: off; NaN refused
     throw UserError("--adaptive must be at most 1e6 levels");
+  const Doing doing("preparing a " + std::to_string(width) + "x" + std::to_string(height) + " frame of " +
+                    std::to_string(scene.spheres.size() + scene.triangles.size()) + " primitives");
   FrameStats stats;
   std::unique_ptr<Bvh> bvh;
   if (uses_bvh(settings_.kernel.accel, bvh_primitive_count(scene), settings_.kernel.precision)) {

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -65,12 +66,10 @@ struct Fd {
   }
 };
 
-// The file's bytes: a regular file of at most max_bytes, opened once.
-std::string read_file(const std::string& path, size_t max_bytes) {
-  // O_NONBLOCK: opening a FIFO must not wait for a writer (it is refused
-  // below); it does not change reads of a regular file.
-  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK)};
-  if (f.fd < 0) fail(path, std::string("cannot open mesh file: ") + std::strerror(errno));
+}  // namespace
+
+std::string read_mesh_file(int fd, const std::string& path, size_t max_bytes) {
+  Fd f{fd};
   struct stat st {};
   if (::fstat(f.fd, &st) != 0) fail(path, std::string("cannot read mesh file: ") + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) fail(path, "cannot open mesh file: is a directory");
@@ -91,6 +90,8 @@ std::string read_file(const std::string& path, size_t max_bytes) {
   }
   return text;
 }
+
+namespace {
 
 // sin and cos of an angle in degrees, exact at multiples of 90.
 void sincos_degrees(double degrees, double* s, double* c) {
@@ -155,7 +156,8 @@ bool next_token(const char** p, const char* e, const char** tb, const char** te)
 }
 
 struct Scan {
-  std::vector<Vec3> vertices;  // transformed
+  std::vector<Vec3> vertices;  // as in the file
+  std::vector<uint32_t> lines;  // each vertex's line
   size_t faces = 0, triangles = 0;
   long long max_index = 0;  // the largest positive (1-based) face index, and its line
   size_t max_index_line = 0;
@@ -163,7 +165,7 @@ struct Scan {
 
 // Checks and reads the v and f lines (see the top of the file) and turns
 // every other line except vn and vt into a comment, in place.
-Scan scan(const std::string& path, std::string& text, const Placement& place, size_t max_triangles) {
+Scan scan(const std::string& path, std::string& text, size_t max_triangles) {
   Scan out;
   const size_t nul = text.find('\0');
   if (nul != std::string::npos) fail(path, "not a text file (NUL byte at offset " + std::to_string(nul) + ")");
@@ -206,12 +208,9 @@ Scan scan(const std::string& path, std::string& text, const Placement& place, si
         }
         if (!std::isfinite(v)) fail(path, at() + "non-finite vertex coordinate " + quoted(tb, te));
       }
-      const Vec3 w = place.apply({xyz[0], xyz[1], xyz[2]});
-      for (double c : {w.x, w.y, w.z})
-        if (!(std::fabs(c) <= kMaxLength))
-          fail(path, at() + "vertex (" + num(xyz[0]) + ", " + num(xyz[1]) + ", " + num(xyz[2]) + ") lies outside ±" +
-                         num(kMaxLength) + " once transformed (coordinate " + num(c) + ")");
-      out.vertices.push_back(w);
+      if (line > std::numeric_limits<uint32_t>::max()) fail(path, at() + "too many lines");
+      out.vertices.push_back({xyz[0], xyz[1], xyz[2]});
+      out.lines.push_back(uint32_t(line));
     } else if (p + 1 < e && p[0] == 'f' && is_space(p[1])) {
       size_t n = 0;
       while (next_token(&q, e, &tb, &te)) {
@@ -238,7 +237,7 @@ Scan scan(const std::string& path, std::string& text, const Placement& place, si
       ++out.faces;
       out.triangles += n - 2;
       if (out.triangles > max_triangles)
-        fail(path, "more than " + std::to_string(max_triangles) + " triangles (the limit for one mesh)");
+        fail(path, "more than " + std::to_string(max_triangles) + " triangles (what the scene's limit leaves for this mesh)");
     } else if (p + 2 < e && p[0] == 'v' && (p[1] == 'n' || p[1] == 't') && is_space(p[2])) {
       // normals and texture coordinates: left to tinyobjloader (faces may refer to them), unused
     } else if (p < e) {
@@ -261,11 +260,8 @@ std::string first_line(const std::string& s) {
 
 }  // namespace
 
-std::vector<Triangle> load_obj_mesh(const std::string& path, const MeshTransform& transform, const Material& material,
-                                    size_t max_triangles, size_t max_bytes) {
-  const Placement place(path, transform);
-  std::string text = read_file(path, max_bytes);
-  const Scan s = scan(path, text, place, max_triangles);
+ObjMesh parse_obj_mesh(const std::string& path, std::string text, size_t max_triangles) {
+  Scan s = scan(path, text, max_triangles);
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
@@ -282,26 +278,58 @@ std::vector<Triangle> load_obj_mesh(const std::string& path, const MeshTransform
     fail(path, "unsupported OBJ syntax (tinyobjloader read " + std::to_string(reader.GetAttrib().vertices.size() / 3) +
                    " vertices, not " + std::to_string(s.vertices.size()) + ")");
 
-  std::vector<Triangle> out;
-  out.reserve(s.triangles);
+  ObjMesh out;
+  out.faces.reserve(3 * s.triangles);
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     const auto& idx = shape.mesh.indices;
     if (idx.size() % 3 != 0) fail(path, "malformed OBJ: a face was not triangulated");
-    for (size_t i = 0; i < idx.size(); i += 3) {
-      Vec3 v[3];
-      for (int k = 0; k < 3; ++k) {
-        const int vi = idx[i + k].vertex_index;
-        if (vi < 0 || size_t(vi) >= s.vertices.size()) fail(path, "face index out of range");
-        v[k] = s.vertices[size_t(vi)];
-      }
-      out.push_back(Triangle{v[0], v[1], v[2], material});
+    for (const tinyobj::index_t& corner : idx) {
+      const int vi = corner.vertex_index;
+      if (vi < 0 || size_t(vi) >= s.vertices.size()) fail(path, "face index out of range");
+      out.faces.push_back(uint32_t(vi));
     }
   }
-  if (out.size() != s.triangles)
+  if (out.faces.size() != 3 * s.triangles)
     fail(path,
          "a polygon could not be triangulated (self-intersecting or degenerate?): " + std::to_string(s.triangles) +
-             " triangles expected, tinyobjloader made " + std::to_string(out.size()));
+             " triangles expected, tinyobjloader made " + std::to_string(out.faces.size() / 3));
+  out.vertices = std::move(s.vertices);
+  out.lines = std::move(s.lines);
   return out;
+}
+
+void check_mesh_transform(const std::string& path, const MeshTransform& transform) {
+  (void)Placement(path, transform);
+}
+
+std::vector<Triangle> place_obj_mesh(const std::string& path, const ObjMesh& mesh, const MeshTransform& transform,
+                                     const Material& material) {
+  const Placement place(path, transform);
+  std::vector<Triangle> out;
+  out.reserve(mesh.triangles());
+  // Only the vertices faces use: each mention of a file costs its triangles,
+  // not its vertex count.
+  auto placed = [&](uint32_t vi) {
+    const Vec3 v = mesh.vertices[vi], w = place.apply(v);
+    for (double c : {w.x, w.y, w.z})
+      if (!(std::fabs(c) <= kMaxLength))
+        fail(path, "line " + std::to_string(mesh.lines[vi]) + ": vertex (" + num(v.x) + ", " + num(v.y) + ", " +
+                       num(v.z) + ") lies outside ±" + num(kMaxLength) + " once transformed (coordinate " + num(c) +
+                       ")");
+    return w;
+  };
+  for (size_t i = 0; i + 2 < mesh.faces.size(); i += 3)
+    out.push_back(Triangle{placed(mesh.faces[i]), placed(mesh.faces[i + 1]), placed(mesh.faces[i + 2]), material});
+  return out;
+}
+
+std::vector<Triangle> load_obj_mesh(const std::string& path, const MeshTransform& transform, const Material& material,
+                                    size_t max_triangles, size_t max_bytes) {
+  check_mesh_transform(path, transform);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) fail(path, std::string("cannot open mesh file: ") + std::strerror(errno));
+  return place_obj_mesh(path, parse_obj_mesh(path, read_mesh_file(fd, path, max_bytes), max_triangles), transform,
+                        material);
 }
 
 }  // namespace clrt

@@ -2,6 +2,7 @@
 // placed in the scene by a MeshTransform.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,18 +18,42 @@ struct MeshTransform {
   double scale = 1;
 };
 
-// The triangles of an OBJ file (polygons triangulated as tinyobjloader
-// does), transformed, each with `material`, in file order. Only vertex
-// positions (`v`) and faces (`f`) are read; normals, texture coordinates,
-// groups and materials (`mtllib`, `usemtl`) are ignored, and no file other
-// than `path` is ever opened. The file is untrusted: UserError
-// ("<path>: <what>") for an unreadable, missing or non-regular file, one
-// larger than max_bytes, a malformed vertex or face line, a face with fewer
-// than 3 or more than kMaxFaceVertices vertices, a face index out of range,
-// a non-finite coordinate, no faces, more than max_triangles triangles, a
-// polygon tinyobjloader cannot triangulate completely, any transformed
-// coordinate outside ±kMaxLength (scene.hpp), or a bad transform (scale not
-// finite and > 0, an angle not finite, translate outside ±kMaxLength).
+// An OBJ file read once: its vertex positions (as in the file, with the
+// line of each, for messages) and its triangles as vertex indices (polygons
+// triangulated as tinyobjloader does), in file order. A scene that names
+// the file several times places it once per mention (place_obj_mesh).
+struct ObjMesh {
+  std::vector<Vec3> vertices;
+  std::vector<uint32_t> lines;
+  std::vector<uint32_t> faces;  // 3 per triangle
+  size_t triangles() const { return faces.size() / 3; }
+};
+
+// The bytes of the mesh file open at `fd` (closed here), named `path` in
+// messages: UserError ("<path>: <what>") unless it is a regular file of at
+// most max_bytes (a FIFO or device is refused, not read).
+std::string read_mesh_file(int fd, const std::string& path, size_t max_bytes);
+
+// Parses OBJ text. Only vertex positions (`v`) and faces (`f`) are read;
+// normals, texture coordinates, groups and materials (`mtllib`, `usemtl`)
+// are ignored, and no file is ever opened. The text is untrusted:
+// UserError ("<path>: <what>") for a malformed vertex or face line, a face
+// with fewer than 3 or more than kMaxFaceVertices vertices, a face index out
+// of range, a non-finite coordinate, no faces, more than max_triangles
+// triangles, or a polygon tinyobjloader cannot triangulate completely.
+ObjMesh parse_obj_mesh(const std::string& path, std::string text, size_t max_triangles);
+
+// UserError unless the transform is one clrt places meshes with (scale
+// finite and > 0, angles finite, translate within ±kMaxLength).
+void check_mesh_transform(const std::string& path, const MeshTransform& transform);
+
+// The mesh's triangles, transformed, each with `material`, in file order;
+// UserError for a bad transform or for a vertex of a face that lies outside
+// ±kMaxLength (scene.hpp) once transformed.
+std::vector<Triangle> place_obj_mesh(const std::string& path, const ObjMesh& mesh, const MeshTransform& transform,
+                                     const Material& material);
+
+// The three above for the file at `path` (opened as given).
 std::vector<Triangle> load_obj_mesh(const std::string& path, const MeshTransform& transform, const Material& material,
                                     size_t max_triangles, size_t max_bytes);
 

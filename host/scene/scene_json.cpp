@@ -4,6 +4,10 @@
 // out-of-range values with a one-line message.
 #include "scene/scene_json.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -15,7 +19,9 @@
 #include <initializer_list>
 #include <istream>
 #include <iterator>
+#include <map>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string_view>
@@ -24,7 +30,9 @@
 
 #include "clrt_layout.h"
 #include "scene/obj_mesh.hpp"
+#include "util/doing.hpp"
 #include "util/error.hpp"
+#include "util/open_beneath.hpp"
 
 namespace clrt {
 namespace {
@@ -228,8 +236,9 @@ bool light_allows(LightType t, Slot key) {
 // type error, so the parser never goes deeper).
 class SceneBuilder final : public nlohmann::json_sax<json> {
  public:
-  // `folder`: where mesh files are looked up (the scene file's folder).
-  SceneBuilder(const std::string& name, const SceneLimits& limits, std::filesystem::path folder)
+  // `folder`: where mesh files are looked up (the scene file's folder);
+  // none for a scene that is not a file (text, standard input, a pipe).
+  SceneBuilder(const std::string& name, const SceneLimits& limits, std::optional<std::filesystem::path> folder)
       : name_(name), limits_(limits), folder_(std::move(folder)) {}
 
   // After the parse: the checks that need the whole camera.
@@ -252,15 +261,59 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
   }
 
   // The meshes' triangles, in the order of "meshes", after the inline
-  // "triangles"; each file is read once per mention, relative to the
-  // scene's folder.
+  // "triangles". Each file is opened beneath the scene's folder, never
+  // through a link (util/open_beneath.hpp), and read and parsed once however
+  // often the scene names it: the triangle limit counts every mention, the
+  // byte limit (SceneLimits::mesh_bytes) every distinct file together.
   void load_meshes() {
+    if (meshes_.empty()) return;
+    if (!folder_)
+      fail(meshes_[0].where + ".file", json_quoted(meshes_[0].file) +
+                                           ": a scene that is not read from a file (standard input, a pipe, a device, "
+                                           "text) has no folder to read mesh files from");
+    const int root = ::open(folder_->c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (root < 0)
+      fail(meshes_[0].where + ".file", "cannot open the scene's folder " + folder_->string() + ": " + std::strerror(errno));
+    struct CloseRoot {
+      int fd;
+      ~CloseRoot() { ::close(fd); }
+    } close_root{root};
+    std::map<std::pair<dev_t, ino_t>, ObjMesh> parsed;
+    size_t bytes = 0;
     for (const MeshSource& m : meshes_) {
-      const std::filesystem::path file = folder_ / m.file;
+      const std::string shown = (*folder_ / m.file).string();
+      const Doing doing("reading the mesh file " + shown);
       const size_t room = limits_.triangles - std::min(limits_.triangles, scene_.triangles.size());
       std::vector<Triangle> faces;
       try {
-        faces = load_obj_mesh(file.string(), m.transform, m.material, room, kMaxMeshBytes);
+        check_mesh_transform(shown, m.transform);
+        std::string why;
+        const int fd = open_beneath(root, m.file, why);
+        if (fd < 0) throw UserError(shown + ": cannot open mesh file: " + why);
+        struct stat st {};
+        if (::fstat(fd, &st) != 0) {
+          ::close(fd);
+          throw UserError(shown + ": cannot read mesh file: " + std::strerror(errno));
+        }
+        auto it = parsed.find({st.st_dev, st.st_ino});
+        if (it == parsed.end()) {
+          const size_t limit = std::min(limits_.mesh_bytes, kMaxMeshBytes);
+          if (S_ISREG(st.st_mode) && uint64_t(st.st_size) <= limit && bytes + uint64_t(st.st_size) > limit) {
+            ::close(fd);
+            throw UserError(shown + ": the scene's mesh files total more than " + std::to_string(limit) +
+                            " bytes (the limit for one scene's meshes)");
+          }
+          std::string text = read_mesh_file(fd, shown, limit - bytes);
+          bytes += text.size();
+          it = parsed.emplace(std::make_pair(st.st_dev, st.st_ino), parse_obj_mesh(shown, std::move(text), room)).first;
+        } else {
+          ::close(fd);
+        }
+        if (it->second.triangles() > room)
+          throw UserError(shown + ": " + std::to_string(it->second.triangles()) + " triangles, more than the " +
+                          std::to_string(room) + " the scene's limit of " + std::to_string(limits_.triangles) +
+                          " leaves for this mesh");
+        faces = place_obj_mesh(shown, it->second, m.transform, m.material);
       } catch (const UserError& e) {
         fail(m.where + ".file", e.what());
       }
@@ -819,7 +872,7 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
 
   const std::string& name_;
   const SceneLimits limits_;
-  const std::filesystem::path folder_;
+  const std::optional<std::filesystem::path> folder_;
   Scene scene_;
   std::array<Frame, kMaxDepth> stack_;
   size_t depth_ = 0;
@@ -886,7 +939,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const SceneL
   if (const void* nul = std::memchr(text.data(), 0, text.size()))
     throw UserError(name + ": malformed JSON: NUL byte at offset " +
                     std::to_string(static_cast<const char*>(nul) - text.data()));
-  SceneBuilder builder(name, limits, ".");
+  SceneBuilder builder(name, limits, std::nullopt);
   if (!json::sax_parse(text, &builder)) throw UserError(name + ": malformed JSON");  // not reached: errors throw
   return builder.finish();
 }
@@ -894,7 +947,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const SceneL
 namespace {
 
 Scene parse_stream(std::istream& in, const std::string& name, const SceneLimits& limits,
-                   const std::filesystem::path& folder) {
+                   const std::optional<std::filesystem::path>& folder) {
   LimitedReader reader(in, name, limits.bytes);
   std::istream stream(&reader);
   SceneBuilder builder(name, limits, folder);
@@ -905,10 +958,11 @@ Scene parse_stream(std::istream& in, const std::string& name, const SceneLimits&
 }  // namespace
 
 Scene parse_scene(std::istream& in, const std::string& name, const SceneLimits& limits) {
-  return parse_stream(in, name, limits, ".");
+  return parse_stream(in, name, limits, std::nullopt);
 }
 
 Scene load_scene(const std::string& path, const SceneLimits& limits) {
+  const Doing doing("loading the scene " + path);
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (std::filesystem::is_directory(status)) throw UserError(path + ": cannot open scene file: is a directory");
@@ -920,7 +974,10 @@ Scene load_scene(const std::string& path, const SceneLimits& limits) {
     const auto bytes = std::filesystem::file_size(path, ec);
     if (!ec && bytes > limits.bytes) too_large(path, limits.bytes);
   }
-  // Mesh files are read from the scene file's folder.
+  // Mesh files are read from the scene file's folder; a scene that is not a
+  // regular file (a pipe, /dev/stdin) has none: under /dev or /proc anyone
+  // could have planted a file by the name it gives.
+  if (!std::filesystem::is_regular_file(status)) return parse_stream(in, path, limits, std::nullopt);
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   return parse_stream(in, path, limits, folder.empty() ? std::filesystem::path(".") : folder);
 }

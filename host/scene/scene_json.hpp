@@ -33,6 +33,9 @@ struct SceneLimits {
   size_t planes = kMaxScenePlanes;
   size_t triangles = kMaxSceneTriangles;  // inline and from meshes together
   size_t meshes = kMaxSceneMeshes;
+  // The bytes of every distinct mesh file together (a file named twice is
+  // read once and counts once).
+  size_t mesh_bytes = size_t(256) << 20;
 };
 // JSON nesting needs no limit of its own: a scene nests 5 levels deep (root,
 // triangles, triangle, vertices, vertex) and the parser stops at the first

@@ -2,6 +2,7 @@
 #include "util/output_file.hpp"
 
 #include <fcntl.h>
+#include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 
 #include "util/error.hpp"
@@ -103,7 +105,92 @@ bool write_all(int fd, const std::string& bytes, int& err) {
   return true;
 }
 
+std::string random_suffix() {
+  unsigned char bytes[8] = {};
+  if (::getrandom(bytes, sizeof bytes, 0) != ssize_t(sizeof bytes)) {
+    // No entropy source: the time and pid still make a name unlikely to be
+    // planted, and O_EXCL makes a planted one fail, never be followed.
+    static std::atomic<unsigned> serial{0};
+    const uint64_t v = uint64_t(::getpid()) << 32 ^ uint64_t(std::time(nullptr)) ^ serial++;
+    std::memcpy(bytes, &v, sizeof bytes);
+  }
+  static const char hex[] = "0123456789abcdef";
+  std::string out;
+  for (unsigned char b : bytes) out += hex[b >> 4], out += hex[b & 15];
+  return out;
+}
+
 }  // namespace
+
+std::string write_file_at(int dirfd, const std::string& dir_path, const std::string& name, const std::string& bytes,
+                          unsigned mode, bool sync) {
+  std::string tmp;
+  int fd = -1;
+  for (int attempt = 0; attempt < 16 && fd < 0; ++attempt) {
+    tmp = ".clrt-" + random_suffix();
+    fd = ::openat(dirfd, tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+    if (fd < 0 && errno != EEXIST) return "cannot create a file in " + dir_path + ": " + errno_text(errno);
+  }
+  if (fd < 0) return "cannot create a file in " + dir_path + ": " + errno_text(EEXIST);
+  register_temp(dir_path + "/" + tmp);
+  int err = 0;
+  bool ok = write_all(fd, bytes, err);
+  if (ok && ::fchmod(fd, mode_t(mode)) != 0) ok = false, err = errno;
+  // fsync and close report what write() could not (delayed allocation on a
+  // full disk, NFS write-back).
+  if (ok && sync && ::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) ok = false, err = errno;
+  if (::close(fd) != 0 && ok) ok = false, err = errno;
+  std::string why;
+  if (!ok)
+    why = errno_text(err);
+  else if (::renameat(dirfd, tmp.c_str(), dirfd, name.c_str()) != 0)
+    why = "rename failed: " + errno_text(errno);
+  if (!why.empty()) ::unlinkat(dirfd, tmp.c_str(), 0);
+  unregister_temp();
+  return why;
+}
+
+namespace {
+
+std::atomic<bool> g_stdout_claimed{false};
+
+// What makes two outputs one file: "-" for standard output; else the file
+// a name reaches (links followed): its device and inode when it exists,
+// else its folder's real path and its name.
+std::string output_identity(const std::string& path) {
+  if (path == "-") return "-";
+  const OutputTarget t = resolve_output(path);
+  struct stat st {};
+  if (::stat(t.resolved.c_str(), &st) == 0)
+    return "inode " + std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
+  std::error_code ec;
+  const fs::path target(t.resolved);
+  const fs::path dir = fs::weakly_canonical(directory_of(target), ec);
+  return "path " + (ec ? directory_of(target) : dir).string() + "/" + target.filename().string();
+}
+
+}  // namespace
+
+void check_distinct_outputs(const std::vector<NamedOutput>& outputs) {
+  std::vector<std::string> ids;
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    ids.push_back(output_identity(outputs[i].path));
+    for (size_t j = 0; j < i; ++j)
+      if (ids[j] == ids[i])
+        throw UserError(outputs[i].path + ": the " + outputs[i].what + " and the " + outputs[j].what +
+                        (outputs[i].path == outputs[j].path ? " are the same file"
+                                                            : " (" + outputs[j].path + ") are the same file") +
+                        (ids[i] == "-" ? " (standard output)" : "") + ": one would be lost");
+  }
+}
+
+void claim_stdout() {
+  g_stdout_claimed.store(true);
+}
+
+std::FILE* report_stream() {
+  return g_stdout_claimed.load() ? stderr : stdout;
+}
 
 ScratchFile::ScratchFile(const std::string& name) {
   const char* env = std::getenv("TMPDIR");
@@ -226,27 +313,14 @@ void write_output(const std::string& path, const std::string& bytes, const std::
     if (!ok) fail(path, what, errno_text(err));
     return;
   }
-  const fs::path target(t.resolved);
-  std::string tmp;
-  int fd = create_temp(directory_of(target), tmp);
-  if (fd < 0) fail(path, what, "cannot create a file in " + directory_of(target).string() + ": " + errno_text(errno));
-  register_temp(tmp);
-  int err = 0;
-  bool ok = write_all(fd, bytes, err);
+  const fs::path target(t.resolved), dir = directory_of(target);
+  const int dirfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dirfd < 0) fail(path, what, "cannot open the directory " + dir.string() + ": " + errno_text(errno));
   // The final file gets the usual permissions (0666 less the umask), set
-  // only now that it is complete.
-  if (ok && ::fchmod(fd, 0666 & ~current_umask()) != 0) ok = false, err = errno;
-  // fsync and close report what write() could not (delayed allocation on a
-  // full disk, NFS write-back).
-  if (ok && ::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) ok = false, err = errno;
-  if (::close(fd) != 0 && ok) ok = false, err = errno;
-  std::string why;
-  if (!ok)
-    why = errno_text(err);
-  else if (::rename(tmp.c_str(), target.c_str()) != 0)
-    why = "rename failed: " + errno_text(errno);
-  if (!why.empty()) ::unlink(tmp.c_str());
-  unregister_temp();
+  // only once it is complete.
+  const std::string why =
+      write_file_at(dirfd, dir.string(), target.filename().string(), bytes, 0666 & ~current_umask(), true);
+  ::close(dirfd);
   if (!why.empty()) fail(path, what, why);
 }
 

@@ -15,7 +15,9 @@
 // check_output() runs the same decisions before any work, so a path that
 // cannot be written fails in milliseconds, not after a long render.
 #pragma once
+#include <cstdio>
 #include <string>
+#include <vector>
 
 namespace clrt {
 
@@ -52,6 +54,33 @@ inline void check_writable(const std::string& path, const std::string& what = "o
 void write_output(const std::string& path, const std::string& bytes, const std::string& what = "output");
 inline void write_text_atomic(const std::string& path, const std::string& text, const std::string& what = "output") {
   write_output(path, text, what);
+}
+
+// The atomic write itself, beneath the open directory `dirfd` (whose path,
+// `dir_path`, names the temp file for the signal handler): `bytes` go to a
+// temp file created there exclusively (random name, O_CREAT|O_EXCL|
+// O_NOFOLLOW, mode 0600), every write checked, fsync'ed when `sync`, given
+// `mode`, then renamed to `name` (rename replaces whatever has that name -
+// a planted link included - and never follows it). Returns "" when done,
+// else the system's reason, with nothing left behind. Never throws.
+std::string write_file_at(int dirfd, const std::string& dir_path, const std::string& name, const std::string& bytes,
+                          unsigned mode, bool sync);
+
+// The outputs of one command, checked together before any work: UserError
+// when two are one file - the same name, names that reach one file through
+// links (f_1.png -> f_0.png), or "-" (standard output) twice - naming both.
+struct NamedOutput {
+  std::string path, what;  // what: "CSV", "plot", "frame 3", ...
+};
+void check_distinct_outputs(const std::vector<NamedOutput>& outputs);
+
+// Where a command prints its report (tables, "wrote ..." lines): standard
+// output, unless one of its outputs is "-" (claim_stdout()), then standard
+// error, so that standard output holds that output alone.
+void claim_stdout();
+std::FILE* report_stream();
+inline void claim_stdout_if_dash(const std::string& path) {
+  if (path == "-") claim_stdout();
 }
 
 // A file named `name` in a new private directory (mode 0700, random name)

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 #include "cl/program_cache.hpp"
@@ -556,4 +557,138 @@ TEST_CASE("another user's file in a sticky directory fails before the work", "[c
              Contains(out + ": cannot write output: it belongs to another user in the sticky directory"));
   CHECK(clrt_test::slurp(out) == "root's file");
   CHECK(entries(sticky) == std::vector<std::string>{clrt_test::image_name("out")});
+}
+
+TEST_CASE("image headers are checked: a PPM maxval of 0 or over 65535, a PFM scale of NaN, infinity or 0",
+          "[cli][hardening]") {
+  // Before, OpenImageIO read such files: a maxval of 0 as a white image, a
+  // NaN scale into NaN pixels; compare then gave a verdict on them.
+  TempDir dir;
+  const std::string demo = source_path("scenes/cgfs-demo.json");
+  const std::string rgb(2 * 2 * 3, '\x10'), floats(2 * 2 * 3 * 4, '\0');
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"zero.ppm", "P6\n2 2\n0\n" + rgb},           {"huge.ppm", "P6\n2 2\n65536\n" + rgb},
+      {"ascii.ppm", "P3\n2 2\n0\n" + std::string(12 * 2, ' ')}, {"nan.pfm", "PF\n2 2\nnan\n" + floats},
+      {"inf.pfm", "PF\n2 2\n-inf\n" + floats},      {"zero.pfm", "PF\n2 2\n0.0\n" + floats},
+  };
+  for (const auto& [name, bytes] : files) {
+    const std::string path = dir.write(name, bytes);
+    const RunResult r = run_clrt({"compare", demo, "--image", path, "--fail-percent", "100"});
+    INFO(name << ": " << r.out << r.err);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, StartsWith("clrt: error: " + path + ": cannot read image: bad "));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  // The same headers with sane values are read.
+  const std::string good = dir.write("good.pfm", "PF\n2 2\n-1.0\n" + floats);
+  CHECK(run_clrt({"compare", demo, "--image", good, "--fail-percent", "100"}).status == 0);
+}
+
+TEST_CASE("running out of memory is one clear line naming what did not fit, exit 2", "[cli][hardening]") {
+#if defined(__SANITIZE_ADDRESS__)
+  SUCCEED("AddressSanitizer reserves terabytes of address space: no address-space limit under it");
+#else
+  // Before: "clrt: internal error: std::bad_alloc", exit 3. A 1 GB address
+  // space cannot hold the reference's 8000x8000 image (1.5 GB of doubles).
+  TempDir dir;
+  const std::string out = dir / "big.png";
+  const RunResult r = clrt_test::run_command_line(
+      "ulimit -v 1000000 && " +
+      clrt_test::clrt_command({"render", source_path("scenes/cgfs-demo.json"), "--engine", "reference", "--width",
+                               "8000", "--height", "8000", "-o", out}));
+  INFO(r.out << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.err == "clrt: error: out of memory while rendering 8000x8000 with the reference\n");
+  CHECK_FALSE(std::filesystem::exists(out));
+#endif
+}
+
+TEST_CASE("a copied clrt never loads the imaging module from the build folder or a planted one", "[cli][hardening]") {
+  namespace fs = std::filesystem;
+  TempDir dir;
+  // Beside nothing: the build folder's module (compiled in as a path) is not
+  // a candidate for a binary outside that folder.
+  fs::create_directories(dir.path() / "alone");
+  const std::string alone = dir / "alone/clrt";
+  fs::copy_file(CLRT_BINARY, alone);
+  const std::string demo = source_path("scenes/cgfs-demo.json");
+  const std::string build_module = (fs::path(CLRT_BINARY).parent_path() / "clrt_imageio.so").string();
+  if (!fs::exists(build_module)) {
+    SUCCEED("a lean build has no imaging module");
+    return;
+  }
+  RunResult r = clrt_test::run_command_line(clrt_test::shell_quote(alone) + " render " + clrt_test::shell_quote(demo) +
+                                            " --engine reference --width 8 --height 8 -o " +
+                                            clrt_test::shell_quote(dir / "a.png"));
+  INFO(r.err);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Contains("was not found"));
+  CHECK_THAT(r.err, !Contains(build_module));
+  // The installed layout (bin/clrt, lib/clrt/clrt_imageio.so) works - unless
+  // others may write the module's folder.
+  fs::create_directories(dir.path() / "prefix/bin");
+  fs::create_directories(dir.path() / "prefix/lib/clrt");
+  const std::string installed = dir / "prefix/bin/clrt";
+  fs::copy_file(CLRT_BINARY, installed);
+  fs::copy_file(build_module, dir / "prefix/lib/clrt/clrt_imageio.so");
+  const std::string render = clrt_test::shell_quote(installed) + " render " + clrt_test::shell_quote(demo) +
+                             " --engine reference --width 8 --height 8 -o " + clrt_test::shell_quote(dir / "b.png");
+  r = clrt_test::run_command_line(render);
+  INFO(r.err);
+  CHECK(r.status == 0);
+  REQUIRE(::chmod((dir / "prefix/lib/clrt").c_str(), 0777) == 0);
+  r = clrt_test::run_command_line(render);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Contains("may be written by others"));
+}
+
+TEST_CASE("with --csv - standard output holds the CSV alone, and two outputs that are one file are refused",
+          "[cli][hardening][opencl]") {
+  namespace fs = std::filesystem;
+  TempDir dir;
+  const std::string demo = source_path("scenes/cgfs-demo.json");
+  const std::vector<std::string> small = {"--width", "8", "--height", "8", "--repeat", "1"};
+  auto with = [&](std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  // Every line of standard output is a CSV row of the header's width.
+  auto only_csv = [](const std::string& out) {
+    std::istringstream in(out);
+    std::string line, header;
+    std::getline(in, header);
+    const auto commas = std::count(header.begin(), header.end(), ',');
+    bool ok = commas > 0;
+    while (std::getline(in, line)) ok = ok && std::count(line.begin(), line.end(), ',') == commas;
+    return ok;
+  };
+  RunResult r = run_clrt(with({"sweep", demo, "--depths", "0:1", "--csv", "-"}, small));
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+  CHECK(only_csv(r.out));
+  CHECK_THAT(r.err, Contains("depth"));  // the table went to standard error
+  r = run_clrt(with({"scaling", "--spheres", "40", "--no-embree", "--csv", "-"}, small));
+  CHECK(r.status == 0);
+  CHECK(only_csv(r.out));
+
+  // The same file twice, directly or through a link: refused before any work.
+  const std::string y = dir / "y.svg";
+  r = run_clrt(with({"sweep", demo, "--depths", "0:1", "--plot", y, "--csv", y}, small));
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, StartsWith("clrt: error: ") && Contains("are the same file"));
+  CHECK_FALSE(fs::exists(y));
+  r = run_clrt(with({"sweep", demo, "--depths", "0:1", "--csv", "-", "--json"}, small));
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Contains("standard output"));
+  fs::create_symlink("f_0.png", dir / "f_1.png");
+  r = run_clrt({"render", demo, demo, "--width", "8", "--height", "8", "-o", dir / "f_#.png"});
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Contains("frame 1 and the frame 0"));
+  CHECK_FALSE(fs::exists(dir / "f_0.png"));
+  const std::string image = dir / "image.ppm";
+  REQUIRE(run_clrt({"render", demo, "--width", "8", "--height", "8", "-o", image}).status == 0);
+  const std::string before = clrt_test::slurp(image);
+  r = run_clrt({"compare", demo, "--image", image, "--diff", image});
+  CHECK(r.status == 2);
+  CHECK(clrt_test::slurp(image) == before);
 }

@@ -1,6 +1,10 @@
 // test_program_cache.cpp - the program cache key, its size limit, info and
 // clear (no device needed; the cache on a device is in
 // tests/render/test_specialize.cpp).
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cstdlib>
@@ -250,4 +254,182 @@ TEST_CASE("processes loading one entry at the same moment never take each other 
   CHECK(fs::exists(cache_entry_path(key)));
   CHECK_FALSE(fs::exists(cache_entry_path(key) + ".bad"));
   for (const auto& name : dir.entries()) CHECK(name.find(".loading") == std::string::npos);
+}
+
+// ---- a directory others can write, planted links and FIFOs -------------------
+
+namespace {
+
+// A pid that no process has: a child that has exited and been reaped.
+pid_t dead_pid() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return pid;
+}
+
+}  // namespace
+
+TEST_CASE("a cache directory others may write holds this user's entries in a private subdirectory", "[cache][hardening]") {
+  // CLRT_CACHE_DIR=/tmp-like: sticky and world-writable. Everything clrt
+  // creates must be beneath a directory nobody else can enter, or another
+  // user could plant a link at the next name it writes.
+  clrt_test::TempDir dir;
+  const fs::path shared = dir.path() / "shared";
+  fs::create_directory(shared);
+  REQUIRE(::chmod(shared.c_str(), 01777) == 0);
+  ScopedEnv env("CLRT_CACHE_DIR", shared.c_str());
+  const std::string victim = dir.write("victim", "precious");
+  const ProgramCacheKey key{"shared", "", "dev", "drv", "plat"};
+  // What another user would plant at the names a naive cache uses.
+  fs::create_symlink(victim, shared / (key.hash() + ".bin"));
+  fs::create_symlink(victim, shared / (key.hash() + ".bin.loading"));
+
+  REQUIRE(cache_store(key, std::vector<unsigned char>(100, 3)));
+  const fs::path mine = shared / ("clrt-" + std::to_string(::geteuid()));
+  CHECK(cache_entry_path(key) == (mine / (key.hash() + ".bin")).string());
+  struct stat st {};
+  REQUIRE(::lstat(mine.c_str(), &st) == 0);
+  CHECK(S_ISDIR(st.st_mode));
+  CHECK((st.st_mode & 0777) == 0700);
+  CHECK(st.st_uid == ::geteuid());
+  REQUIRE(cache_load(key).has_value());
+  std::string note;
+  CHECK(cache_begin_load(key, &note));
+  cache_end_load(key, true);
+  CHECK(clrt_test::slurp(victim) == "precious");
+  const ProgramCacheLocation loc = program_cache_location();
+  CHECK(loc.shared);
+  CHECK(loc.problem.empty());
+
+  SECTION("a subdirectory someone else made, or a link in its place, is not used") {
+    fs::remove_all(mine);
+    const fs::path elsewhere = dir.path() / "elsewhere";
+    fs::create_directory(elsewhere);
+    fs::create_symlink(elsewhere, mine);
+    CHECK_FALSE(cache_store(key, std::vector<unsigned char>(100, 3)));
+    CHECK(fs::is_empty(elsewhere));
+    CHECK_FALSE(cache_load(key).has_value());
+    CHECK_FALSE(program_cache_location().problem.empty());
+    fs::remove(mine);
+    fs::create_directory(mine);
+    REQUIRE(::chmod(mine.c_str(), 0777) == 0);  // one others may write
+    CHECK_FALSE(cache_store(key, std::vector<unsigned char>(100, 3)));
+    CHECK(fs::is_empty(mine));
+  }
+}
+
+TEST_CASE("the cache never writes through a link at an entry's name", "[cache][hardening]") {
+  clrt_test::TempDir dir;
+  const fs::path cache = dir.path() / "cache";
+  fs::create_directory(cache);
+  ScopedEnv env("CLRT_CACHE_DIR", cache.c_str());
+  const std::string victim = dir.write("victim", "precious");
+  const ProgramCacheKey key{"link", "", "dev", "drv", "plat"};
+  fs::create_symlink(victim, cache / (key.hash() + ".bin"));
+  CHECK_FALSE(cache_load(key).has_value());  // a link named like an entry is not one
+  REQUIRE(cache_store(key, std::vector<unsigned char>(100, 4)));
+  CHECK(clrt_test::slurp(victim) == "precious");
+  CHECK(fs::is_regular_file(fs::symlink_status(cache / (key.hash() + ".bin"))));
+  // The test API's path form does not follow a link either.
+  const std::string planted = (cache / "1111111111111111.bin").string();
+  fs::create_symlink(victim, planted);
+  REQUIRE(cache_write_entry(planted, key.text(), std::vector<unsigned char>(8, 1)));
+  CHECK(clrt_test::slurp(victim) == "precious");
+}
+
+TEST_CASE("a dangling link at a mark's name makes the cache create nothing", "[cache][hardening]") {
+  clrt_test::TempDir dir;
+  const fs::path cache = dir.path() / "cache";
+  fs::create_directory(cache);
+  ScopedEnv env("CLRT_CACHE_DIR", cache.c_str());
+  const ProgramCacheKey key{"mark", "", "dev", "drv", "plat"};
+  const std::string entry = (cache / (key.hash() + ".bin")).string();
+  REQUIRE(cache_write_entry(entry, key.text(), std::vector<unsigned char>(64, 1)));
+  // The marker of a load that crashed (its process is gone) makes the cache
+  // mark the key bad: through a planted link, that created the link's target.
+  std::ofstream(entry + ".loading") << dead_pid() << "\n";
+  const fs::path target = dir.path() / "created-by-clrt";
+  fs::create_symlink(target, entry + ".bad");
+  std::string note;
+  CHECK_FALSE(cache_begin_load(key, &note));
+  CHECK_FALSE(fs::exists(fs::symlink_status(target)));
+  CHECK_FALSE(cache_store(key, std::vector<unsigned char>(64, 1)));  // the key stays marked
+  CHECK_FALSE(fs::exists(fs::symlink_status(target)));
+
+  // Without the link: the crashed load is found, the entry goes, the mark is
+  // a regular file.
+  fs::remove(entry + ".bad");
+  CHECK_FALSE(cache_begin_load(key, &note));
+  CHECK_THAT(note, Catch::Contains("crashed an earlier run"));
+  CHECK(fs::is_regular_file(fs::symlink_status(entry + ".bad")));
+  CHECK_FALSE(fs::exists(entry));
+
+  // A dangling link as the load marker: no load, nothing created.
+  const ProgramCacheKey other{"mark2", "", "dev", "drv", "plat"};
+  const std::string entry2 = (cache / (other.hash() + ".bin")).string();
+  REQUIRE(cache_write_entry(entry2, other.text(), std::vector<unsigned char>(64, 1)));
+  const fs::path target2 = dir.path() / "created-too";
+  fs::create_symlink(target2, entry2 + ".loading");
+  CHECK_FALSE(cache_begin_load(other, &note));
+  cache_end_load(other, true);
+  CHECK_FALSE(fs::exists(fs::symlink_status(target2)));
+}
+
+TEST_CASE("a FIFO at an entry's or a marker's name never blocks a render", "[cache][hardening]") {
+  // Opening a FIFO for reading blocks until a writer comes: before, one at
+  // ENTRY.loading hung every render of that entry. (Were it to block again,
+  // this test would hang and CTest's timeout fail it.)
+  clrt_test::TempDir dir;
+  const fs::path cache = dir.path() / "cache";
+  fs::create_directory(cache);
+  ScopedEnv env("CLRT_CACHE_DIR", cache.c_str());
+  const ProgramCacheKey key{"fifo", "", "dev", "drv", "plat"};
+  const std::string entry = (cache / (key.hash() + ".bin")).string();
+  REQUIRE(cache_write_entry(entry, key.text(), std::vector<unsigned char>(64, 1)));
+  REQUIRE(::mkfifo((entry + ".loading").c_str(), 0600) == 0);
+  std::string note;
+  CHECK_FALSE(cache_begin_load(key, &note));
+  CHECK(note.empty());
+  CHECK(fs::exists(entry));  // not taken for a crashed load
+
+  const ProgramCacheKey other{"fifo2", "", "dev", "drv", "plat"};
+  REQUIRE(::mkfifo((cache / (other.hash() + ".bin")).c_str(), 0600) == 0);
+  CHECK_FALSE(cache_load(other).has_value());
+  REQUIRE(::mkfifo((cache / (other.hash() + ".bin.bad")).c_str(), 0600) == 0);
+  CHECK_FALSE(cache_begin_load(other, &note));
+  CHECK_FALSE(cache_store(other, std::vector<unsigned char>(64, 1)));  // a mark in any form
+}
+
+TEST_CASE("an entry that is not this user's file is not loaded", "[cache][hardening]") {
+  if (::geteuid() != 0) {
+    SUCCEED("needs root to give a file to another user");
+    return;
+  }
+  clrt_test::TempDir dir;
+  const fs::path cache = dir.path() / "cache";
+  fs::create_directory(cache);
+  ScopedEnv env("CLRT_CACHE_DIR", cache.c_str());
+  const ProgramCacheKey key{"owner", "", "dev", "drv", "plat"};
+  const std::string entry = (cache / (key.hash() + ".bin")).string();
+  REQUIRE(cache_write_entry(entry, key.text(), std::vector<unsigned char>(64, 1)));
+  REQUIRE(cache_load(key).has_value());
+  REQUIRE(::chown(entry.c_str(), 65534, 65534) == 0);
+  CHECK_FALSE(cache_load(key).has_value());
+}
+
+TEST_CASE("cache info says when the cache cannot be created", "[cli][cache][hardening]") {
+  clrt_test::TempDir dir;
+  const std::string home = dir.write("home-is-a-file", "x");
+  const clrt_test::RunResult r =
+      clrt_test::run_clrt({"cache", "info"}, "env -u CLRT_CACHE_DIR -u XDG_CACHE_HOME HOME=" + clrt_test::shell_quote(home));
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("cannot be created: " + home + " is not a directory"));
+  CHECK_THAT(r.out, !Catch::Contains("does not exist yet"));
+  const clrt_test::RunResult c =
+      clrt_test::run_clrt({"cache", "clear"}, "env -u CLRT_CACHE_DIR -u XDG_CACHE_HOME HOME=" + clrt_test::shell_quote(home));
+  CHECK(c.status == 2);
+  CHECK_THAT(c.err, Catch::StartsWith("clrt: error: "));
 }

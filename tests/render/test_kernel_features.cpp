@@ -313,6 +313,15 @@ TEST_CASE("lane counts: explicit, unresolved and per device", "[features][lanes]
     CHECK(default_lanes(cfg, device("CPU", 4)) == 8);
     CHECK(default_lanes(cfg, device("GPU", 16)) == 1);  // work-items are SIMD lanes already
     CHECK(default_lanes(cfg, device("ACCELERATOR", 16)) == 1);
+    // Mesa's llvmpipe (rusticl) runs work-items as SIMD lanes on a CPU: 8
+    // lanes of pixels per work-item compile 10x longer there and run no
+    // faster (docs/performance.md).
+    DeviceInfo llvmpipe = device("CPU", 8);
+    llvmpipe.platform_name = "rusticl";
+    llvmpipe.name = "llvmpipe (LLVM 15.0.6, 256 bits)";
+    CHECK(default_lanes(cfg, llvmpipe) == 1);
+    llvmpipe.platform_name = "Portable Computing Language";
+    CHECK(default_lanes(cfg, llvmpipe) == 1);  // by its name alone
     KernelConfig generic;
     generic.specialize = false;
     CHECK(default_lanes(generic, device("CPU", 16)) == 1);

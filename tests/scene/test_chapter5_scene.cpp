@@ -1,6 +1,7 @@
 // test_chapter5_scene.cpp - the scene format's chapter 5 keys: transparency
 // and refractive index, planes, inline triangles and OBJ meshes (paths,
 // transforms, limits), their errors, and the round trip through JSON.
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -8,8 +9,11 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "scene/scene_json.hpp"
+#include "cli_run.hpp"
 #include "test_util.hpp"
 #include "util/error.hpp"
 
@@ -164,4 +168,100 @@ TEST_CASE("planes and triangles survive the round trip through JSON", "[scene][f
   const std::string demo = scene_to_json(clrt_test::load("scenes/cgfs-demo.json"), JsonStyle::Pretty);
   CHECK(demo.find("planes") == std::string::npos);
   CHECK(demo.find("transparency") == std::string::npos);
+}
+
+namespace {
+
+// A scene folder with a scene naming `files` (one mesh each), beside an
+// "outside" folder holding a file the scene must not read.
+struct MeshFolder {
+  clrt_test::TempDir root;
+  std::filesystem::path scene_dir = root.path() / "scene", outside = root.path() / "outside";
+  MeshFolder() {
+    std::filesystem::create_directories(scene_dir / "models");
+    std::filesystem::create_directories(outside);
+    std::ofstream(outside / "secret.obj") << "SECRET-LINE root:x:0:0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(scene_dir / "models" / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  }
+  std::string scene(const std::vector<std::string>& files) const {
+    std::string text = R"({"meshes": [)";
+    for (size_t i = 0; i < files.size(); ++i)
+      text += std::string(i ? ", " : "") + R"({"color": [1, 1, 1], "translate": [0, 0, 5], "file": ")" + files[i] + "\"}";
+    text += "], " + kLight + "}";
+    const std::string path = (scene_dir / "scene.json").string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::string error_of_scene(const std::vector<std::string>& files, const SceneLimits& limits = {}) const {
+    try {
+      load_scene(scene(files), limits);
+    } catch (const UserError& e) {
+      return e.what();
+    }
+    return "";
+  }
+};
+
+}  // namespace
+
+TEST_CASE("mesh files cannot leave the scene's folder through links", "[scene][mesh][hardening][full-build]") {
+  namespace fs = std::filesystem;
+  MeshFolder f;
+  REQUIRE(load_scene(f.scene({"models/tri.obj"})).triangles.size() == 1);
+  fs::create_symlink("../outside/secret.obj", f.scene_dir / "relative.obj");
+  fs::create_symlink(f.outside / "secret.obj", f.scene_dir / "absolute.obj");
+  fs::create_symlink("/etc/passwd", f.scene_dir / "models" / "passwd.obj");
+  fs::create_symlink("../outside", f.scene_dir / "linked");  // a folder that is a link
+  fs::create_symlink("models/tri.obj", f.scene_dir / "inside.obj");  // even one that stays inside
+  for (const std::string file :
+       {"relative.obj", "absolute.obj", "models/passwd.obj", "linked/secret.obj", "./linked/secret.obj", "inside.obj"}) {
+    const std::string e = f.error_of_scene({file});
+    INFO(file << ": " << e);
+    CHECK(e.find("meshes[0].file: ") != std::string::npos);
+    CHECK(e.find("symbolic link") != std::string::npos);
+    // Not one byte of what lies behind the link.
+    CHECK(e.find("SECRET") == std::string::npos);
+    CHECK(e.find("root:") == std::string::npos);
+  }
+  // A plain file is not reached through a non-folder either.
+  CHECK(f.error_of_scene({"models/tri.obj/x.obj"}).find("not a folder") != std::string::npos);
+}
+
+TEST_CASE("a scene that is not a file has no folder to read meshes from", "[scene][mesh][hardening][full-build]") {
+  namespace fs = std::filesystem;
+  MeshFolder f;
+  // As text (no folder at all) and through a FIFO (before: looked up beside
+  // the FIFO, so under /dev for /dev/stdin, where /dev/shm is anyone's).
+  const std::string text = R"({"meshes": [{"color": [1, 1, 1], "file": "models/tri.obj"}], )" + kLight + "}";
+  CHECK_THAT(error_of(text), Catch::Contains("has no folder to read mesh files from"));
+  const std::string fifo = (f.scene_dir / "scene.fifo").string();
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::thread writer([&] { std::ofstream(fifo) << text; });
+  std::string e;
+  try {
+    load_scene(fifo);
+  } catch (const UserError& x) {
+    e = x.what();
+  }
+  writer.join();
+  CHECK_THAT(e, Catch::StartsWith(fifo + ": meshes[0].file: \"models/tri.obj\": a scene that is not read from a file"));
+}
+
+TEST_CASE("mesh limits count the whole scene, and a file named twice is read once", "[scene][mesh][hardening][full-build]") {
+  MeshFolder f;
+  const Scene three = load_scene(f.scene({"models/tri.obj", "models/tri.obj", "./models//tri.obj"}));
+  REQUIRE(three.triangles.size() == 3);
+  CHECK(three.triangles[2].v1.x == 1);
+  SceneLimits two;
+  two.triangles = 2;
+  CHECK_THAT(f.error_of_scene({"models/tri.obj", "models/tri.obj", "models/tri.obj"}, two),
+             Catch::Contains("meshes[2].file: ") && Catch::Contains("1 triangles, more than the 0 the scene's limit of 2 leaves"));
+  // Bytes: every distinct file once, all together.
+  std::ofstream(f.scene_dir / "models" / "tri2.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const size_t one_file = std::filesystem::file_size(f.scene_dir / "models" / "tri.obj");
+  SceneLimits bytes;
+  bytes.mesh_bytes = one_file + one_file / 2;
+  CHECK(load_scene(f.scene({"models/tri.obj", "models/tri.obj", "models/tri.obj"}), bytes).triangles.size() == 3);
+  CHECK_THAT(f.error_of_scene({"models/tri.obj", "models/tri2.obj"}, bytes),
+             Catch::Contains("meshes[1].file: ") && Catch::Contains("mesh files total more than"));
 }
