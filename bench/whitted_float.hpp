@@ -63,7 +63,9 @@ inline Scenery scenery(const clrt::Scene& scene) {
   Scenery w;
   for (const auto& s : scene.spheres)
     w.spheres.push_back({fv(s.center), float(s.radius), float(s.specular), float(s.reflective), fv(s.color)});
-  for (const auto& l : scene.lights) w.lights.push_back({l.type, float(l.intensity), fv(l.vec)});
+  // Directions as the scene gave them: the book's shadow range is in their units.
+  for (const auto& l : scene.lights)
+    w.lights.push_back({l.type, float(l.intensity), fv(l.type == clrt::LightType::Directional ? l.given_vec() : l.vec)});
   w.background = fv(scene.background);
   return w;
 }

@@ -68,7 +68,12 @@ typedef struct clrt_light {
   clrt_f32 intensity;
   clrt_f32 vec[3];    /* position (point) or direction (directional), hi */
   clrt_f32 vec_lo[3]; /* lo parts */
-} clrt_light;         /* 32 bytes */
+  /* Directional: the shadow ray's t_min is epsilon x this, a power of two
+   * (Light::shadow_t_min: the book's range, in units of the direction the
+   * scene gave); 1 for other lights. */
+  clrt_f32 t_min_scale;
+  clrt_f32 pad[3];
+} clrt_light; /* 48 bytes */
 
 typedef struct clrt_params {
   clrt_i32 width; /* full image size in pixels */
@@ -186,6 +191,8 @@ typedef struct clrt_bvh_node {
   FIELD(clrt_light, intensity)         \
   FIELD(clrt_light, vec)               \
   FIELD(clrt_light, vec_lo)            \
+  FIELD(clrt_light, t_min_scale)       \
+  FIELD(clrt_light, pad)               \
   FIELD(clrt_params, width)            \
   FIELD(clrt_params, height)           \
   FIELD(clrt_params, depth)            \

@@ -192,12 +192,16 @@ CLRT_INLINE lreal compute_lighting(const vec3* point, const vec3* normal, const 
     const vec3 light_vector = VEC3_FROM_HI_LO(light->vec, light->vec_lo);
     vec3 L;
     real tmax;
+    /* A directional light's range starts at epsilon in units of the
+     * direction the scene gave (clrt_light.t_min_scale). */
+    real tmin = epsilon;
 #if CLRT_HAS_POINT && CLRT_HAS_DIRECTIONAL
     if (type == CLRT_LIGHT_POINT) {
       L = vsub(light_vector, Pt);
       tmax = 1;
     } else {
       L = light_vector;
+      tmin = epsilon * (real)light->t_min_scale;
       tmax = REAL_INFINITY;
     }
 #elif CLRT_HAS_POINT
@@ -205,12 +209,13 @@ CLRT_INLINE lreal compute_lighting(const vec3* point, const vec3* normal, const 
     tmax = 1;
 #else
     L = light_vector;
+    tmin = epsilon * (real)light->t_min_scale;
     tmax = REAL_INFINITY;
 #endif
     COUNT_IN_LANES(counts->shadow, alive, 1);
     lint tests = 0;
     const lint blocked =
-        any_intersection(&Pt, &L, epsilon, tmax, hit, alive, scene, &tests);
+        any_intersection(&Pt, &L, tmin, tmax, hit, alive, scene, &tests);
     COUNT_IN_LANES(counts->sphere_tests, alive, tests);
     if (classify && light_index < 32) *shadow_mask |= (blocked & alive) ? (lint)(int)(1u << light_index) : (lint)0;
     const lint lit = alive & !blocked;

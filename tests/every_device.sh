@@ -2,17 +2,20 @@
 # every_device.sh CLRT CLRT_TESTS - runs the OpenCL tests that compare with
 # the reference on every device `clrt devices` lists besides the default one
 # (the plain test run covers that), one run per device with CLRT_TEST_DEVICE
-# set to its index. Multi-device tests stay on the default device: they pick
-# their devices themselves; so do the [cli] and [mpi-cli] tests, which run
-# the clrt binary on its default device (tagged [opencl] because they need
-# one), and so do
-# tests tagged [per-case-builds], which build a program per generated case
-# (40 builds: under a minute on PoCL, ~5 minutes on rusticl with cold
-# caches, most of this script's time in CI). Tests that sweep a matrix of
-# builds (lane counts, generic, fp64) run only the default build here
-# (CLRT_TEST_BUILDS=default, tests/test_util.hpp: every_build()): each program
-# is a cold build of 10-40 s on rusticl. Registered with CTest
-# (CMakeLists.txt).
+# set to its index. What runs there is the fast tier's device tests: the
+# cases that render and compare on one device. Left to the default device
+# (docs/testing.md has the measurements):
+# - multi-device tests, which pick their devices themselves, and the [cli]
+#   and [mpi-cli] tests, which run the clrt binary on its default device
+#   (tagged [opencl] because they need one); [dist] tests (the MPI layer in
+#   a world of one: the farm, not the device);
+# - the slow tier ([slow]) and [per-case-builds]: a program per case or per
+#   cell of a matrix, each a cold build on rusticl;
+# - supersampling ([spp]): with Mesa's shader cache empty, two of its cases
+#   took 412 s and 430 s on rusticl.
+# Tests that sweep a matrix of builds (lane counts, generic, fp64) run only
+# the default build here (CLRT_TEST_BUILDS=default, tests/test_util.hpp:
+# every_build()). Registered with CTest (CMakeLists.txt).
 set -euo pipefail
 clrt=$1 tests=$2
 # Mesa rusticl exposes its llvmpipe device only when asked.
@@ -23,7 +26,7 @@ if [ ${#others[@]} -eq 0 ]; then
   echo "every_device: only the default device is installed; nothing more to run"
   exit 0
 fi
-spec='[opencl]~[multidevice]~[cli]~[mpi-cli]~[per-case-builds]'
+spec='[opencl]~[multidevice]~[cli]~[mpi-cli]~[per-case-builds]~[slow]~[dist]~[spp]'
 # One process per core, each with every n-th test: a driver's compiler
 # (rusticl's) runs on one thread, so one process would leave the other
 # cores idle. (Names go to Catch2's --input-file with its test-spec

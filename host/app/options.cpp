@@ -9,6 +9,7 @@
 
 #include "clrt_layout.h"
 #include "render/precision.hpp"
+#include "scene/ray_tree.hpp"
 #include "scene/scene_json.hpp"
 #include "scene/viewport.hpp"
 #include "util/error.hpp"
@@ -80,6 +81,9 @@ Scene ImageOptions::load_scene(const std::string& path) const {
                                        ":1): the viewport's shape is not " + std::to_string(width) + "x" +
                                        std::to_string(height) + "'s; --aspect image fits it to the image");
   }
+  // Work that may not end today is announced before it starts.
+  const std::string work = ray_tree_warning(scene, effective_depth(scene), width, height, spp);
+  if (!work.empty()) log_message(LogLevel::Warning, path + ": " + work);
   return scene;
 }
 

@@ -37,7 +37,7 @@ Material get_material(Reader& r) {
 
 // The least a sphere, light, plane and triangle take on the wire (counts
 // are checked against the bytes left before anything is allocated).
-constexpr size_t kSphereBytes = 12 * 8, kLightBytes = 4 + 4 * 8, kPlaneBytes = 11 * 8, kTriangleBytes = 14 * 8;
+constexpr size_t kSphereBytes = 12 * 8, kLightBytes = 4 + 4 * 8 + 4, kPlaneBytes = 11 * 8, kTriangleBytes = 14 * 8;
 
 }  // namespace
 
@@ -56,7 +56,8 @@ Bytes encode_scene(const Scene& s) {
     w.put(p.specular), w.put(p.reflective), w.put(p.transparency), w.put(p.refractive_index);
   }
   w.put<uint64_t>(s.lights.size());
-  for (const Light& l : s.lights) w.put<int32_t>(int32_t(l.type)), w.put(l.intensity), put_vec(w, l.vec);
+  for (const Light& l : s.lights)
+    w.put<int32_t>(int32_t(l.type)), w.put(l.intensity), put_vec(w, l.vec), w.put<int32_t>(l.scale_exponent);
   w.put<uint64_t>(s.planes.size());
   for (const Plane& p : s.planes) put_vec(w, p.point), put_vec(w, p.normal), put_material(w, p.material);
   w.put<uint64_t>(s.triangles.size());
@@ -87,6 +88,8 @@ Scene decode_scene(const Bytes& b) {
     const int32_t type = r.get<int32_t>();
     if (type < 0 || type > int32_t(LightType::Directional)) throw DeviceError("MPI: a scene with a bad light type");
     l.type = LightType(type), l.intensity = r.get<double>(), l.vec = get_vec(r);
+    l.scale_exponent = r.get<int32_t>();
+    if (l.scale_exponent < -1100 || l.scale_exponent > 1100) throw DeviceError("MPI: a scene with a bad light scale");
   }
   s.planes.resize(r.get_count(kPlaneBytes));
   for (Plane& p : s.planes) p.point = get_vec(r), p.normal = get_vec(r), p.material = get_material(r);

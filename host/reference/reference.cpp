@@ -143,16 +143,17 @@ class Tracer {
         continue;
       }
       Vec3 L;
-      double t_max;
+      double t_min = s_.epsilon, t_max;
       if (light.type == LightType::Point) {
         L = light.vec - P;
         t_max = 1;
       } else {
         L = light.vec;
+        t_min = light.shadow_t_min(s_.epsilon);  // in units of the direction the scene gave
         t_max = kInf;
       }
       // Shadow check.
-      if (ClosestIntersection(P, L, s_.epsilon, t_max).found()) {
+      if (ClosestIntersection(P, L, t_min, t_max).found()) {
         if (shadowed && li < 32) *shadowed |= int32_t(1u << li);
         continue;
       }

@@ -54,10 +54,17 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
   // Largest band the device can hold (float RGB output is the largest buffer).
   const long long alloc_rows = std::max<long long>(1, (long long)(r.device().max_alloc / (3 * sizeof(float))) / W);
   const int max_rows = int(std::min<long long>(H, alloc_rows));
+  // Someone watches the progress: bands of about kProgressBandMs, so that
+  // the bar moves during a long frame on a device without a launch limit
+  // (before, a CPU frame was one launch: "0/600 rows" until it ended).
+  // The few extra launches cost nothing against a frame that long; short
+  // frames grow to one or two bands at once (4x per band).
+  constexpr double kProgressBandMs = 250;
+  const bool watched = static_cast<bool>(progress.fn);
   int rows;
   if (policy.band_rows > 0)
     rows = policy.band_rows;
-  else if (limit > 0 || n_workers > 1)
+  else if (limit > 0 || n_workers > 1 || watched)
     rows = std::min(16, max_rows);  // calibration band: measure before growing
   else
     rows = max_rows;  // one device, no limit: as few launches as memory allows
@@ -85,7 +92,7 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
     // Adapt: aim at 80% of the launch limit, or (no limit) 100 ms per band
     // with several devices, growing at most 4x per step.
     const double per_row = std::max(ms, 1e-3) / n;
-    const double target = limit > 0 ? 0.8 * limit : (n_workers > 1 ? 100.0 : 0.0);
+    const double target = limit > 0 ? 0.8 * limit : n_workers > 1 ? 100.0 : watched ? kProgressBandMs : 0.0;
     if (target > 0) {
       double want = std::floor(target / per_row);
       rows = int(std::max(1.0, std::min({want, 4.0 * n, double(max_rows)})));

@@ -18,7 +18,7 @@ namespace clrt {
 // to clrt_layout.h that breaks this fails here.
 static_assert(sizeof(clrt_f32) == 4 && sizeof(clrt_i32) == 4, "32-bit scalars");
 static_assert(sizeof(clrt_sphere) == 80, "clrt_sphere size");
-static_assert(sizeof(clrt_light) == 32, "clrt_light size");
+static_assert(sizeof(clrt_light) == 48, "clrt_light size");
 static_assert(sizeof(clrt_params) == 184, "clrt_params size");
 static_assert(sizeof(clrt_material) == 32, "clrt_material size");
 static_assert(sizeof(clrt_plane) == 64, "clrt_plane size");
@@ -175,7 +175,13 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
     o.intensity = static_cast<float>(l.intensity);
     // Positions move with the camera-relative shift; directions do not.
     if (l.type == LightType::Point) split3(l.vec - shift, o.vec, o.vec_lo);
-    if (l.type == LightType::Directional) split3(l.vec, o.vec, o.vec_lo);
+    o.t_min_scale = 1;
+    if (l.type == LightType::Directional) {
+      split3(l.vec, o.vec, o.vec_lo);
+      // 2^e within float's normal range (directions are within ±kMaxLength;
+      // a tiny one's t_min is 0 in float as it is ~0 in double).
+      o.t_min_scale = static_cast<float>(std::ldexp(1.0, std::max(-126, std::min(127, l.scale_exponent))));
+    }
     d.lights.push_back(o);
   }
   // Planes and triangles name their material by index; equal materials (a

@@ -26,6 +26,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "util/bytes_text.hpp"
 #include "util/error.hpp"
 
 // Debian builds libtinyobjloader_double with real_t = double; the header
@@ -44,10 +45,6 @@ std::string num(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
-}
-
-std::string size_text(size_t bytes) {
-  return bytes % (size_t(1) << 20) == 0 ? std::to_string(bytes >> 20) + " MiB" : std::to_string(bytes) + " bytes";
 }
 
 // A token from the file for a one-line message: printable ASCII only, cut.
@@ -75,7 +72,7 @@ std::string read_mesh_file(int fd, const std::string& path, size_t max_bytes) {
   if (S_ISDIR(st.st_mode)) fail(path, "cannot open mesh file: is a directory");
   if (!S_ISREG(st.st_mode)) fail(path, "cannot open mesh file: not a regular file");
   if (st.st_size < 0 || uint64_t(st.st_size) > max_bytes)
-    fail(path, "mesh file is larger than " + size_text(max_bytes));
+    fail(path, "mesh file is larger than " + bytes_text(max_bytes));
   std::string text;
   text.reserve(size_t(st.st_size));
   char buf[1 << 16];
@@ -85,7 +82,7 @@ std::string read_mesh_file(int fd, const std::string& path, size_t max_bytes) {
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) fail(path, std::string("cannot read mesh file: ") + std::strerror(errno));
     if (n == 0) break;
-    if (size_t(n) > room) fail(path, "mesh file is larger than " + size_text(max_bytes));
+    if (size_t(n) > room) fail(path, "mesh file is larger than " + bytes_text(max_bytes));
     text.append(buf, size_t(n));
   }
   return text;

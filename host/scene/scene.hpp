@@ -2,6 +2,7 @@
 // renders; scene_json.hpp reads and writes it.
 #pragma once
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,16 @@ struct Light {
   LightType type = LightType::Ambient;
   double intensity = 0;
   Vec3 vec;  // position (point) or direction (directional)
+  // Directional: the scene gave vec x 2^scale_exponent (the parser rescales
+  // a direction by a power of two so that no length over- or underflows).
+  // The book's shadow ray covers [epsilon, inf) in units of the direction
+  // it was given, so along vec it starts at epsilon x 2^scale_exponent: the
+  // same points, exactly (a power of two), as the book's.
+  int scale_exponent = 0;
+  double shadow_t_min(double epsilon) const { return std::ldexp(epsilon, scale_exponent); }
+  Vec3 given_vec() const {
+    return {std::ldexp(vec.x, scale_exponent), std::ldexp(vec.y, scale_exponent), std::ldexp(vec.z, scale_exponent)};
+  }
 };
 
 struct Camera {

@@ -31,6 +31,7 @@
 #include "clrt_layout.h"
 #include "scene/obj_mesh.hpp"
 #include "util/doing.hpp"
+#include "util/bytes_text.hpp"
 #include "util/error.hpp"
 #include "util/open_beneath.hpp"
 
@@ -54,12 +55,8 @@ std::string json_quoted(const std::string& s) {
   return s.size() <= kMaxEcho ? shown : shown + "... (" + std::to_string(s.size()) + " bytes)";
 }
 
-std::string size_text(size_t bytes) {
-  return bytes % (size_t(1) << 20) == 0 ? std::to_string(bytes >> 20) + " MiB" : std::to_string(bytes) + " bytes";
-}
-
 [[noreturn]] void too_large(const std::string& name, size_t max_bytes) {
-  throw UserError(name + ": scene file is larger than " + size_text(max_bytes));
+  throw UserError(name + ": scene file is larger than " + bytes_text(max_bytes));
 }
 
 // What a value in the file is: the key it stands under, or its place.
@@ -300,8 +297,8 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
           const size_t limit = std::min(limits_.mesh_bytes, kMaxMeshBytes);
           if (S_ISREG(st.st_mode) && uint64_t(st.st_size) <= limit && bytes + uint64_t(st.st_size) > limit) {
             ::close(fd);
-            throw UserError(shown + ": the scene's mesh files total more than " + std::to_string(limit) +
-                            " bytes (the limit for one scene's meshes)");
+            throw UserError(shown + ": the scene's mesh files total more than " + bytes_text(limit) +
+                            " (the limit for one scene's meshes)");
           }
           std::string text = read_mesh_file(fd, shown, limit - bytes);
           bytes += text.size();
@@ -865,6 +862,7 @@ class SceneBuilder final : public nlohmann::json_sax<json> {
       int e = 0;
       (void)std::frexp(std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)}), &e);
       light_.vec = {std::ldexp(d.x, -e), std::ldexp(d.y, -e), std::ldexp(d.z, -e)};
+      light_.scale_exponent = e;  // the shadow range follows (Light::shadow_t_min)
     }
     if (!(seen & bit(Slot::Intensity))) fail(value_path(), "missing \"intensity\"");
     scene_.lights.push_back(light_);
@@ -1001,7 +999,7 @@ std::string scene_to_json(const Scene& s, JsonStyle style) {
     json jl = {{"intensity", l.intensity}};
     if (l.type == LightType::Ambient) jl["type"] = "ambient";
     if (l.type == LightType::Point) jl["type"] = "point", jl["position"] = v3(l.vec);
-    if (l.type == LightType::Directional) jl["type"] = "directional", jl["direction"] = v3(l.vec);
+    if (l.type == LightType::Directional) jl["type"] = "directional", jl["direction"] = v3(l.given_vec());
     root["lights"].push_back(jl);
   }
   auto material = [&v3](json& item, const Material& m) {

@@ -25,6 +25,7 @@
 #include "render/build_options.hpp"
 #include "render/precision.hpp"
 #include "render/renderer.hpp"
+#include "scene/ray_tree.hpp"
 #include "scene/scene_json.hpp"
 #include "test_util.hpp"
 #include "util/error.hpp"
@@ -198,16 +199,20 @@ TEST_CASE("scene values beyond the float32 range are rejected, naming value and 
 TEST_CASE("directional light directions are rescaled without overflow or underflow", "[hardening][reference]") {
   // Lighting does not depend on a direction's length; before, [1e-300, ...]
   // made the reference itself output NaN and [0, 1e39, -1e39] NaN pixels.
-  auto with_direction = [](const std::string& d) {
-    return clrt::parse_scene(R"({"spheres": [{"center": [0, -1, 3], "radius": 1, "color": [255, 0, 0], "specular": 10}],
-      "lights": [{"type": "ambient", "intensity": 0.2}, {"type": "directional", "intensity": 0.8, "direction": )" +
+  auto with_direction = [](const std::string& d, const std::string& epsilon = "0.001") {
+    return clrt::parse_scene(R"({"epsilon": )" + epsilon + R"(, "spheres": [{"center": [0, -1, 3], "radius": 1,
+      "color": [255, 0, 0], "specular": 10}], "lights": [{"type": "ambient", "intensity": 0.2},
+      {"type": "directional", "intensity": 0.8, "direction": )" +
                                  d + "}]}",
                              "s.json");
   };
   const clrt::Scene unit = with_direction("[1, 1, -1]");
   const clrt::Image want = clrt::render_reference(unit, 40, 30, 3);
-  // A power of two changes nothing: bit-identical.
-  CHECK(clrt::render_reference(with_direction("[4, 4, -4]"), 40, 30, 3).rgb == want.rgb);
+  // The book's shadow range [epsilon, inf) is in units of the direction
+  // given: [4, 4, -4] is [1, 1, -1] with epsilon 4 x 0.001 (the scene has
+  // no other ray that epsilon starts), bit for bit.
+  CHECK(clrt::render_reference(with_direction("[4, 4, -4]"), 40, 30, 3).rgb ==
+        clrt::render_reference(with_direction("[1, 1, -1]", "0.004"), 40, 30, 3).rgb);
   for (const char* d :
        {"[1e-300, 1e-300, -1e-300]", "[1e300, 1e300, -1e300]", "[5e-324, 5e-324, -5e-324]", "[0, 1e39, -1e39]"}) {
     INFO(d);
@@ -222,8 +227,53 @@ TEST_CASE("directional light directions are rescaled without overflow or underfl
     const clrt::Comparison c = clrt::compare_images(got, want);
     CHECK(c.nan_inf == 0);
     CHECK(c.nan_inf_reference == 0);
-    CHECK(c.max_abs_float < 1e-9);  // the same direction: only double rounding differs
+    // A huge direction's shadow range starts far away (epsilon x |D|): the
+    // sphere's lit side is as with [1, 1, -1], whose shadow rays hit nothing.
+    // A tiny one's starts at ~1e-303: the book's self-shadowing wherever
+    // rounding puts the sphere's own surface past that, so only finiteness
+    // is checked there.
+    if (std::string(d).find("e300") != std::string::npos) CHECK(c.max_abs_float < 1e-9);
   }
+}
+
+TEST_CASE("a directional light's shadow range is the book's, in units of the direction the scene gives",
+          "[opencl][hardening][reference]") {
+  // The parser rescales a direction by a power of two (above); before, the
+  // shadow ray's t_min stayed epsilon along the rescaled direction, so a
+  // surface within epsilon x |given direction| of the lit point cast a
+  // shadow the book does not (11 pixels of a floor 0.0024 in front of a
+  // wall at 512x384). Here: the pixel through the wall point P = (0, 0, 5),
+  // light direction D = (4, 0, -4) (|D| = 5.66), and a sphere of radius
+  // 0.0005 whose near side lies h = 0.002 from P along D: the book's shadow
+  // ray meets it at t = h / |D| = 0.00035 < epsilon = 0.001: lit; along the
+  // rescaled (0.5, 0, -0.5), t = 0.0028 > 0.001 was taken for a shadow.
+  const double h = 0.002, r = 0.0005, u = 1 / std::sqrt(2.0);
+  const double c = (h + r) * u;  // the sphere's centre: P + (h + r) D/|D|
+  auto scene = [&](bool sphere) {
+    std::ostringstream text;
+    text.precision(17);
+    // (A viewport of 1e-6: the one pixel's ray meets the wall 5e-6 from P.)
+    text << R"({"camera": {"viewport": [1e-6, 1e-6]}, "epsilon": 0.001, "background": [0, 0, 0],
+      "planes": [{"point": [0, 0, 5], "normal": [0, 0, -1], "color": [200, 200, 200]}],
+      "spheres": [)";
+    if (sphere) text << R"({"center": [)" << c << ", 0, " << 5 - c << R"(], "radius": )" << r << R"(, "color": [0, 0, 255]})";
+    text << R"(], "lights": [{"type": "ambient", "intensity": 0.1},
+      {"type": "directional", "intensity": 0.9, "direction": [4, 0, -4]}]})";
+    return clrt::parse_scene(text.str(), "epsilon.json");
+  };
+  const clrt::Scene open = scene(false), shaded = scene(true);
+  const clrt::Image lit = clrt::render_reference(open, 1, 1, 0);
+  const clrt::Image got = clrt::render_reference(shaded, 1, 1, 0);
+  REQUIRE(lit.rgb[0] > 100);  // 200 x (0.1 + 0.9 cos 45°)
+  CHECK(got.rgb == lit.rgb);
+  const clrt::Image cl = clrt_test::render_cl(shaded, 1, 1, 0, clrt::KernelConfig{});
+  CHECK(clrt::compare_images(cl, got).off_by_gt1 == 0);
+  CHECK(std::fabs(cl.rgb[0] - lit.rgb[0]) <= 1);
+  // The scene writes back the direction it was given, so it reads back the same.
+  const clrt::Scene back = clrt::parse_scene(clrt::scene_to_json(shaded), "back.json");
+  CHECK(back.lights[1].vec.x == shaded.lights[1].vec.x);
+  CHECK(back.lights[1].scale_exponent == 3);
+  CHECK(clrt::render_reference(back, 1, 1, 0).rgb == lit.rgb);
 }
 
 TEST_CASE("at the edges of the accepted range no engine or precision gives a NaN pixel", "[opencl][hardening][slow]") {
@@ -691,4 +741,33 @@ TEST_CASE("with --csv - standard output holds the CSV alone, and two outputs tha
   r = run_clrt({"compare", demo, "--image", image, "--diff", image});
   CHECK(r.status == 2);
   CHECK(clrt_test::slurp(image) == before);
+}
+
+TEST_CASE("a scene whose ray tree may take hours says so before the work", "[cli][hardening]") {
+  // Two transparent, reflective shells: every hit both reflects and
+  // refracts, 2^(depth+1) - 1 rays per camera ray at most.
+  TempDir dir;
+  const std::string shells = dir.write("shells.json", R"({"spheres": [
+      {"center": [0, 0, 4], "radius": 1, "color": [200, 200, 255], "reflective": 0.3, "transparency": 0.7,
+       "refractive_index": 1.5},
+      {"center": [0, 0, 4], "radius": 2, "color": [200, 255, 200], "reflective": 0.3, "transparency": 0.7,
+       "refractive_index": 1.3}],
+    "lights": [{"type": "ambient", "intensity": 1}]})");
+  const clrt::Scene s = clrt::load_scene(shells);
+  CHECK(clrt::worst_rays_per_camera_ray(s, 3) == 15);
+  CHECK(clrt::worst_rays_per_camera_ray(s, 30) == std::ldexp(1.0, 31) - 1);
+  CHECK(clrt::ray_tree_warning(s, 3, 600, 600, 1).empty());
+  CHECK_FALSE(clrt::ray_tree_warning(s, 30, 600, 600, 1).empty());
+  // The book's demo: reflection only, depth + 1 rays.
+  CHECK(clrt::worst_rays_per_camera_ray(clrt::load_scene(source_path("scenes/cgfs-demo.json")), 3) == 4);
+  // The warning comes before any work. (Here the one camera ray misses the
+  // shells, so the frame itself ends at once.)
+  const std::string aside = dir.write("aside.json", R"({"spheres": [
+      {"center": [0, 100, 4], "radius": 1, "color": [200, 200, 255], "reflective": 0.3, "transparency": 0.7}],
+    "lights": [{"type": "ambient", "intensity": 1}]})");
+  const RunResult r = run_clrt({"render", aside, "--engine", "reference", "--depth", "40", "--width", "1",
+                                "--height", "1", "-o", dir / "s.png"});
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.err, Contains("clrt: warning: " + aside + ": a camera ray may branch into up to 2.2e+12 rays"));
 }

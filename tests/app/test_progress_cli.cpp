@@ -3,6 +3,7 @@
 // (on stderr only), and -q/--quiet accepted by every command, silencing
 // informational lines but never errors.
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -108,4 +109,27 @@ TEST_CASE("progress is drawn only on a terminal (or when forced), on stderr only
     CHECK(silent.status == 0);
     CHECK(silent.err.find('\r') == std::string::npos);
   }
+}
+
+TEST_CASE("progress moves during a long frame on one device", "[cli][progress][opencl]") {
+  // Before, a CPU frame was one launch: the bar showed 0/H rows until the
+  // frame was done. Now it is cut into bands of about 250 ms once someone
+  // watches. A 2000x2000 fp64 frame of the demo takes about 2 s on two
+  // cores: the bar shows counts between 0 and all of its rows.
+  TempDir dir;
+  const RunResult r = run_clrt({"render", demo(), "--width", "2000", "--height", "2000", "--precision", "fp64", "-o",
+                                dir / clrt_test::image_name("big")},
+                               "CLRT_PROGRESS=always");
+  INFO(r.err);
+  if (r.status == 2 && r.err.find("cl_khr_fp64") != std::string::npos) {
+    SUCCEED("the device has no fp64");
+    return;
+  }
+  REQUIRE(r.status == 0);
+  size_t between = 0;
+  for (size_t at = r.err.find("] "); at != std::string::npos; at = r.err.find("] ", at + 1)) {
+    const int done = std::atoi(r.err.c_str() + at + 2);
+    between += done > 0 && done < 2000;
+  }
+  CHECK(between >= 1);
 }

@@ -26,6 +26,11 @@ void require_same_scene(const Scene& a, const Scene& b) {
     CHECK(a.spheres[i].refractive_index == b.spheres[i].refractive_index);
     CHECK(a.spheres[i].transparency == b.spheres[i].transparency);
   }
+  REQUIRE(a.lights.size() == b.lights.size());
+  for (size_t i = 0; i < a.lights.size(); ++i) {
+    CHECK(std::memcmp(&a.lights[i].vec, &b.lights[i].vec, sizeof(Vec3)) == 0);
+    CHECK(a.lights[i].scale_exponent == b.lights[i].scale_exponent);  // the shadow range (Light::shadow_t_min)
+  }
 }
 
 }  // namespace
