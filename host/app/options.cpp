@@ -70,10 +70,11 @@ void ImageOptions::validate() const {
     throw UserError("--subsample needs one sample per pixel (got --spp " + std::to_string(spp) + ")");
 }
 
-Scene ImageOptions::load_scene(const std::string& path) const {
+Scene ImageOptions::load_scene(const std::string& path, bool warn) const {
   Scene scene = clrt::load_scene(path);
   if (!aspect.empty()) scene.camera.aspect_from_image = aspect == "image";
   scene.camera = camera_for_image(scene.camera, width, height);
+  if (!warn) return scene;
   if (!square_pixels(scene.camera, width, height)) {
     char ratio[32];
     std::snprintf(ratio, sizeof ratio, "%.3g", pixel_aspect(scene.camera, width, height));

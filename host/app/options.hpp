@@ -53,8 +53,9 @@ struct ImageOptions {
   int effective_depth(const Scene& s) const { return depth == kSceneDepth ? s.recursion_depth : depth; }
   // Loads a scene for an image of this size: its camera as --aspect and the
   // scene say (camera_for_image()), with a warning when its pixels are not
-  // square.
-  Scene load_scene(const std::string& path) const;
+  // square and one when its ray tree may take hours (scene/ray_tree.hpp);
+  // warn = false: without them (a scene loaded again for its frame).
+  Scene load_scene(const std::string& path, bool warn = true) const;
 };
 
 // --device: one device, or (several = true) a list / 'all'.

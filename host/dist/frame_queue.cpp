@@ -138,11 +138,11 @@ struct Finished {
   FrameRun run;
 };
 
-void master(Communicator& comm, const std::vector<Scene>& scenes, const FrameQueueSettings& settings,
+void master(Communicator& comm, size_t count, const SceneSource& scenes, const FrameQueueSettings& settings,
             const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats) {
   const auto t0 = Clock::now();
   const int ranks = comm.size();
-  const int frames = int(scenes.size());
+  const int frames = int(count);
   std::vector<RankShare> shares(static_cast<size_t>(ranks));
   for (int r = 0; r < ranks; ++r) shares[size_t(r)].rank = r;
   const std::string host = comm.host();
@@ -176,7 +176,7 @@ void master(Communicator& comm, const std::vector<Scene>& scenes, const FrameQue
       while (take(local_index)) {
         FrameRun run;
         run.index = local_index, run.rank = 0, run.host = host;
-        Image img = render_frame(render, scenes[size_t(local_index)], run, settings, /*check=*/true);
+        Image img = render_frame(render, *scenes(size_t(local_index)), run, settings, /*check=*/true);
         add_frame(shares[0], run, settings.height);
         std::lock_guard<std::mutex> lock(mutex);
         finished.push_back(Finished{std::move(img), run});
@@ -196,7 +196,7 @@ void master(Communicator& comm, const std::vector<Scene>& scenes, const FrameQue
   const auto give = [&](int rank, int most) {
     int index = 0;
     while (outstanding[size_t(rank)] < most && (outstanding[size_t(rank)] == 0 || left() > ranks) && take(index)) {
-      comm.send(rank, kTagWork, encode_work(index, encode_scene(scenes[size_t(index)])));
+      comm.send(rank, kTagWork, encode_work(index, encode_scene(*scenes(size_t(index)))));
       ++outstanding[size_t(rank)];
     }
     if (outstanding[size_t(rank)] == 0 && !told_done[size_t(rank)]) {
@@ -309,18 +309,25 @@ int rows_per_message(int width, int height, const FrameContents& contents, long 
 
 void farm_frames(Communicator& comm, const std::vector<Scene>& scenes, const FrameQueueSettings& settings,
                  const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats) {
+  // Each frame's scene is the vector's own (an aliasing pointer, no copy).
+  const SceneSource source = [&scenes](size_t i) { return std::shared_ptr<const Scene>(std::shared_ptr<const Scene>(), &scenes[i]); };
+  farm_frames(comm, scenes.size(), source, settings, render, done, stats);
+}
+
+void farm_frames(Communicator& comm, size_t count, const SceneSource& scenes, const FrameQueueSettings& settings,
+                 const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats) {
   if (comm.rank() != 0) return work(comm, settings, render);
-  if (comm.distributed()) return master(comm, scenes, settings, render, done, stats);
+  if (comm.distributed()) return master(comm, count, scenes, settings, render, done, stats);
   // A world of one: frame after frame on this thread.
   const auto t0 = Clock::now();
   RankShare share;
   share.host = comm.host();
-  const int frames = int(scenes.size());
+  const int frames = int(count);
   if (settings.progress) settings.progress(0, frames, "frames");
   for (int i = 0; i < frames; ++i) {
     FrameRun run;
     run.index = i, run.host = share.host;
-    const Image img = render_frame(render, scenes[size_t(i)], run, settings, /*check=*/false);
+    const Image img = render_frame(render, *scenes(size_t(i)), run, settings, /*check=*/false);
     add_frame(share, run, settings.height);
     done(img, run);
     if (settings.progress) settings.progress(i + 1, frames, "frames");

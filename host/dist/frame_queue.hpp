@@ -8,6 +8,7 @@
 // those of a single-process render of the same scene (tests/dist/).
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,13 @@ struct FrameQueueStats {
 // `done`'s exception as it is), the others JobAborted. Frames done before
 // the failure stay done. `stats` on rank 0.
 void farm_frames(Communicator& comm, const std::vector<Scene>& scenes, const FrameQueueSettings& settings,
+                 const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats);
+// The same for `count` frames whose scenes rank 0 gets from `scenes(i)` as
+// each frame is handed out (from rank 0's MPI thread and its render thread,
+// so it must be safe to call from both): a run of large scenes need not be
+// held all at once.
+using SceneSource = std::function<std::shared_ptr<const Scene>(size_t index)>;
+void farm_frames(Communicator& comm, size_t count, const SceneSource& scenes, const FrameQueueSettings& settings,
                  const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats);
 
 // Rows per result message for frames `width` wide holding `contents`: the

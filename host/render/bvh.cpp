@@ -196,11 +196,24 @@ class Builder {
         if (cost < best_cost) best_cost = cost, best_axis = a, best_bin = b;
       }
     }
-    if (best_axis < 0) return;  // every centroid in one place
+    if (best_axis < 0) {
+      // Every centroid in one place (coincident or identical primitives):
+      // no plane separates them, but a leaf of millions would make every
+      // ray that meets it test them all, and keep a shadow ray from stopping
+      // early. Halve by count instead, so leaves stay at most
+      // kBvhMaxLeafSize; both halves keep one box (the same order as given).
+      if (count > size_t(kBvhMaxLeafSize)) {
+        axis = 0;
+        for (int a = 1; a < 3; ++a)
+          if (bounds.upper[a] - bounds.lower[a] > bounds.upper[axis] - bounds.lower[axis]) axis = a;
+        middle = begin + count / 2;
+      }
+      return;
+    }
     // A leaf costs a test of each primitive for every ray that meets the box;
     // a split, one box test more and the children's tests.
     const double leaf_cost = bounds.half_area() * double(count);
-    if (best_cost >= leaf_cost && count <= size_t(4 * kBvhLeafSize)) return;
+    if (best_cost >= leaf_cost && count <= size_t(kBvhMaxLeafSize)) return;
     const double low = centroids.lower[best_axis], extent = centroids.upper[best_axis] - low;
     auto split =
         std::partition(items_.begin() + std::ptrdiff_t(begin), items_.begin() + std::ptrdiff_t(end),

@@ -43,6 +43,9 @@ bool uses_bvh(Accel accel, size_t primitive_count, Precision precision);
 size_t bvh_primitive_count(const Scene& scene);
 
 constexpr int kBvhLeafSize = 4;  // a leaf of more only where no split pays (or at the depth limit)
+// The largest leaf, whatever the SAH says (coincident primitives are split by
+// count); only the depth limit can make a larger one (2^47 leaves away).
+constexpr int kBvhMaxLeafSize = 4 * kBvhLeafSize;
 constexpr int kBvhBins = 16;     // SAH candidates per axis
 
 struct Bvh {

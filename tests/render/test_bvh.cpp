@@ -138,12 +138,22 @@ TEST_CASE("the hierarchy is the same on any number of threads", "[bvh]") {
 }
 
 TEST_CASE("the hierarchy stays shallow where spheres coincide", "[bvh]") {
-  // 200 copies of one sphere: nothing separates them, so one leaf.
+  // 200 copies of one sphere: no plane separates them. Before, one leaf of
+  // all 200 (4 000 000 identical faces made one leaf, every ray testing
+  // every face); now they are halved by count into leaves of at most
+  // kBvhMaxLeafSize: 200 -> 100 -> 50 -> 25 -> 12/13, depth 4.
   Scene scene = random_spheres(1);
   scene.spheres.assign(200, scene.spheres[0]);
   const Bvh bvh = build_bvh(scene, Precision::Robust);
   check_structure(scene, bvh);
-  CHECK(bvh.depth == 0);
+  CHECK(bvh.depth == 4);
+  for (const clrt_bvh_node& n : bvh.nodes) CHECK(n.count <= kBvhMaxLeafSize);
+  // Identical triangles, too.
+  Scene faces = random_spheres(0);
+  faces.triangles.assign(5000, Triangle{{0, 0, 5}, {1, 0, 5}, {0, 1, 5}, {}});
+  const Bvh flat = build_bvh(faces, Precision::Robust);
+  CHECK(flat.depth <= 10);  // ceil(log2(5000 / 16)) = 9
+  for (const clrt_bvh_node& n : flat.nodes) CHECK(n.count <= kBvhMaxLeafSize);
   // A line of spheres a factor 2 apart (a deep, unbalanced split sequence).
   Scene line = random_spheres(0);
   for (int i = 0; i < 60; ++i) line.spheres.push_back({{std::ldexp(1.0, i - 20), 1, 5}, 1e-7, {1, 2, 3}, -1, 0});
