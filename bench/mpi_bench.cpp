@@ -1,5 +1,5 @@
 // mpi_bench.cpp - clrt_mpi_bench: what distributing one frame over MPI ranks
-// costs (docs/distributed.md). A benchmark tool, not part of clrt.
+// costs (docs/developer/distributed.md). A benchmark tool, not part of clrt.
 //
 //   clrt_mpi_bench frames [--scene F] [--width W] [--height H] [--depth D] [--repeat R]
 //                         [--tile-rows N] [--band-rows N] [--device SPEC] [--json]

@@ -1,4 +1,4 @@
-// mpi_model.hpp - the model of docs/distributed.md: the frame time of one
+// mpi_model.hpp - the model of docs/developer/distributed.md: the frame time of one
 // frame farmed over P nodes (dist::farm_frame) with fixed tiles of r rows,
 // from per-tile costs measured by clrt_mpi_bench and an assumed network.
 // Pure functions (tests/dist/test_mpi_bench_model.cpp); no timing here.

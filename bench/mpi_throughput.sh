@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# mpi_throughput.sh - issue 16's overhead check (docs/distributed.md): the
+# mpi_throughput.sh - the farm's overhead check (docs/developer/distributed.md): the
 # frames/s of `mpirun -np 2` with one compute unit per rank against one
 # process using both cores, on the 1920x1080 demo at depth 3.
 #
@@ -9,8 +9,8 @@
 # rounds (default 5). Each round runs both, alternating which goes first:
 #   THREADS=2 BENCH frames                                (one process, 2 PoCL threads)
 #   THREADS=1 mpirun --oversubscribe -np 2 BENCH frames   (2 ranks, 1 PoCL thread each)
-# where THREADS=n is POCL_CPU_MAX_CU_COUNT=n (the issue's name, PoCL 4 and
-# later) and POCL_MAX_PTHREAD_COUNT=n: Debian 12's PoCL 3.1 ignores the first
+# where THREADS=n is POCL_CPU_MAX_CU_COUNT=n (the name PoCL 4 and later
+# read) and POCL_MAX_PTHREAD_COUNT=n: Debian 12's PoCL 3.1 ignores the first
 # (measured: a 1920x1080 spp 16 frame takes 3.2 s and 6.7 s of CPU with
 # POCL_CPU_MAX_CU_COUNT=1, like with nothing set, and 6.4 s on one core with
 # POCL_MAX_PTHREAD_COUNT=1; `clrt devices` shows 1 CU only with the latter).

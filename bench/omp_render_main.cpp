@@ -1,6 +1,6 @@
 // omp_render_main.cpp - clrt_omp_render SCENE WIDTH HEIGHT OUT: the OpenMP
 // float tracer of `clrt bench` (omp_tracer.hpp) as a whole process, the
-// baseline of `clrt render` as a whole process (docs/performance.md,
+// baseline of `clrt render` as a whole process (docs/results/README.md,
 // "Start-up"): load the scene, render one frame at the scene's depth, write
 // the image the way clrt writes an 8-bit one (the canvas rule of to_u8(),
 // then image_file.hpp, which loads the imaging module). A benchmark tool,

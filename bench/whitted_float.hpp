@@ -15,7 +15,7 @@
 // (CMakeLists.txt). Without them the book's specular term pow(r.v, 500)
 // underflows on most pixels and glibc's powf takes its underflow path
 // through denormal arithmetic: measured 11-14% of the OpenMP tracer's frame
-// time (docs/performance.md), which had inflated clrt's speedup over it.
+// time (docs/developer/benchmarking.md), which had inflated clrt's speedup over it.
 #pragma once
 #include <omp.h>
 #if defined(__SSE__)

@@ -33,7 +33,7 @@ CLRT_INLINE vec3 inverse_direction(const vec3* D) {
 
 /* min and max as selects: no operand is NaN here (finite box corners and
  * origins times nonzero finite reciprocals), and PoCL's fmin/fmax keep NaN rules
- * that cost ~12% of a frame (docs/performance.md). */
+ * that cost ~12% of a frame (docs/developer/kernel.md). */
 #define BMIN(a, b) ((a) < (b) ? (a) : (b))
 #define BMAX(a, b) ((a) > (b) ? (a) : (b))
 

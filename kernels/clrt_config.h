@@ -40,7 +40,7 @@
  *                        absent; packet_rows(), build_options.hpp)
  *
  * Measurement knobs, never set by the host (--cl-options, see
- * docs/performance.md): CLRT_SHADOW_ALL_SPHERES, CLRT_LIB_POW, and
+ * docs/developer/benchmarking.md): CLRT_SHADOW_ALL_SPHERES, CLRT_LIB_POW, and
  * CLRT_DEPTH (with CLRT_SPECIALIZED: the recursion depth as a constant;
  * the host passes it at run time, which measured the same). */
 #ifndef CLRT_CONFIG_H

@@ -54,7 +54,7 @@ CLRT_INLINE void compensated_roots(const vec3* Op, const vec3* Dp, __global cons
  * g = C - O, b = g.D and the discriminant b^2 - a c in Lagrange's form
  * a r^2 - |g x D|^2, roots (b -+ sqrt) / a. It needs no c, no division but
  * the roots' and is as fast as the book's formula (measured,
- * docs/performance.md); its rounding, u |g| in the ray's distance from the
+ * docs/results/archive.md); its rounding, u |g| in the ray's distance from the
  * centre, is that of the Ray Tracing Gems form, where the book's b^2 - 4ac
  * loses u |g|^2 / r (with it, unit spheres reflected in a sphere of radius
  * 2000 around the camera came out wrong on 18% of the pixels). A ray that

@@ -8,7 +8,7 @@
  * builds. Every lane runs exactly the per-pixel algorithm, with branches
  * turned into per-lane masks; loops stop when no lane needs them any more.
  * PoCL does not vectorize the kernel across work-items by itself (see
- * docs/performance.md), so the lanes are written out; the scalar build runs
+ * docs/developer/kernel.md), so the lanes are written out; the scalar build runs
  * the same code with 1-lane masks. */
 #ifndef CLRT_LANES_H
 #define CLRT_LANES_H

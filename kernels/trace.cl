@@ -57,7 +57,7 @@ CLRT_INLINE vec3 camera_direction(const lreal dx, const lreal dy, const real* m,
  * because a level's slot is written only after every deeper one was
  * emptied. The slots take CLRT_DEPTH_BOUND + 1 entries of (origin,
  * direction, weight, medium, start sphere, mask) per lane: 40 bytes per lane
- * and level in float builds (docs/performance.md, "Refraction"). */
+ * and level in float builds (docs/developer/kernel.md). */
 CLRT_INLINE vec3 trace_camera_ray(const lreal dx, const lreal dy, const real* m, const real dz, const vec3 camera,
                                   const real epsilon, const vec3 background, const int depth, const int classify,
                                   const lint active, const lint assumed, const scene_data* scene, lint* hit_id,
@@ -341,7 +341,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
   if (spp == 1) {
     /* The one ray through (x, y), apart from the sample loop below: the
      * loop around it cost the single-ray render 5% of the demo's kernel
-     * time (docs/performance.md, "Supersampling"). */
+     * time (docs/results/archive.md). */
     const lreal dx = TO_LREAL(x) * viewport_w / (real)W;
     const lreal dy = TO_LREAL(y) * viewport_h / (real)H;
 #if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE

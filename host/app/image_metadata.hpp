@@ -1,5 +1,5 @@
-// image_metadata.hpp - what an image clrt writes says about itself (README,
-// "Image files"): renders and compare's --diff images alike.
+// image_metadata.hpp - what an image clrt writes says about itself
+// (docs/guide/images.md): renders and compare's --diff images alike.
 #pragma once
 #include <string>
 

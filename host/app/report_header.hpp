@@ -1,5 +1,5 @@
 // report_header.hpp - the fields that open every machine-readable report
-// (every --json object and every CSV row, README "Machine-readable output"):
+// (every --json object and every CSV row, docs/guide/output.md):
 // which clrt wrote it, when, and with which OpenCL driver.
 #pragma once
 #include <nlohmann/json.hpp>

@@ -33,7 +33,7 @@ inline bool is_gpu_type(const std::string& type) {
 // Whether the driver runs a work-group's work-items as the lanes of SIMD
 // vectors itself, as GPUs do and as Mesa's llvmpipe (rusticl) does on a
 // CPU: there a kernel that shades a block of pixels per work-item gains
-// nothing and costs the driver's compiler 10x the time (docs/performance.md).
+// nothing and costs the driver's compiler 10x the time (docs/developer/kernel.md).
 inline bool simd_over_work_items(const DeviceInfo& dev) {
   return is_gpu_type(dev.type) || dev.platform_name == "rusticl" || dev.name.rfind("llvmpipe", 0) == 0;
 }

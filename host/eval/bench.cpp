@@ -96,7 +96,7 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   std::vector<double> cold, warm, uploads;
   if (s.builds) {
     // Cold: from source, program cache bypassed (PoCL's own cache is only
-    // off if POCL_KERNEL_CACHE=0 is set; see docs/performance.md).
+    // off if POCL_KERNEL_CACHE=0 is set; see docs/reference/kernel.md).
     RenderSettings no_cache = settings;
     no_cache.kernel.use_cache = false;
     for (int i = 0; i < build_repeat; ++i) {

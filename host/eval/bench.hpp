@@ -49,7 +49,7 @@ struct BenchSettings {
 // Builds timed per kind: at most this many (a cold build costs up to seconds).
 constexpr int kMaxBuildRepeat = 3;
 
-// Nominal FLOP counts (the book's float formulas, see docs/performance.md):
+// Nominal FLOP counts (the book's float formulas, see docs/developer/benchmarking.md):
 // a ray-sphere test is O-C (3), D.D (5), 2 CO.D (6), CO.CO - r^2 (7),
 // b^2 - 4ac (4) = 25; roots, shading and the robust variant's compensated
 // arithmetic are not counted, so GFLOP/s is a lower bound.

@@ -14,10 +14,10 @@ namespace clrt {
 
 // What an image file says about itself: (key, value) string attributes,
 // e.g. {"clrt:scene", "scenes/cgfs-demo.json"}. write_image() stores them
-// where the format has a place for them (README, "Image files").
+// where the format has a place for them (docs/guide/images.md).
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 
-// The colour convention of the files clrt writes (README, "Image files"):
+// The colour convention of the files clrt writes (docs/guide/images.md):
 // the book's colours are display values (sRGB-encoded, as a canvas shows
 // them), never linear light. 8-bit formats hold them as they are (canvas
 // rule); float formats hold value / 255, so 1.0 is white, tagged sRGB

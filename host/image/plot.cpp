@@ -43,7 +43,7 @@ bool device_available(const std::string& device) {
 }
 
 // PLplot calls exit() after a fatal error; this handler makes that one
-// `clrt: error:` line with status 2 (README "Exit status").
+// `clrt: error:` line with status 2 (docs/guide/errors.md).
 int plot_exit_handler(const char* message) {
   std::fprintf(stderr, "clrt: error: plot: %s\n", message && *message ? message : "PLplot failed");
   return kExitBadInput;

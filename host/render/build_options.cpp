@@ -82,7 +82,7 @@ void add_specialization(const KernelFeatures& features, std::vector<std::string>
   // Not the depth: the kernel reads it at run time, so one program serves
   // every depth (a sweep builds once, not once per depth). Compiled in
   // (-DCLRT_DEPTH, still a knob) it saved under 1% of the demo's kernel
-  // time, within the noise (docs/performance.md, "What specialization buys").
+  // time, within the noise (docs/results/archive.md).
   options.push_back(define("CLRT_HAS_AMBIENT", features.has_ambient));
   options.push_back(define("CLRT_HAS_POINT", features.has_point));
   options.push_back(define("CLRT_HAS_DIRECTIONAL", features.has_directional));
@@ -93,7 +93,7 @@ void add_specialization(const KernelFeatures& features, std::vector<std::string>
   options.push_back(define("CLRT_HAS_TRIANGLES", features.triangle_count > 0));
   // Constant counts (and so unrolled loops and per-light types) only for
   // small scenes: the unrolled code, and with it the build time, grows with
-  // every sphere and light (docs/performance.md, "Bounded specialization").
+  // every sphere and light (docs/reference/kernel.md, "Specialization").
   if (!features.unroll_counts) return;
   options.push_back(define("CLRT_N_SPHERES", features.sphere_count));
   options.push_back(define("CLRT_N_LIGHTS", features.light_count));
@@ -109,7 +109,7 @@ void add_specialization(const KernelFeatures& features, std::vector<std::string>
 // path no sphere takes when the spheres agree; with unrolled counts it makes
 // each sphere's flag a constant, so that every unrolled test is one straight
 // path: the flag read at run time cost 10% of the demo's kernel time against
-// the constants (docs/performance.md). Otherwise the flags decide at run time.
+// the constants (docs/reference/precision.md). Otherwise the flags decide at run time.
 void add_compensation(const KernelFeatures& features, std::vector<std::string>& options) {
   const size_t compensated = features.compensated_spheres();
   if (compensated == 0 || compensated == features.compensated.size()) {

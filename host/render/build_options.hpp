@@ -43,14 +43,14 @@ int kernel_lanes(const KernelConfig& cfg);
 // pixels, 8 lanes 4x2, 4 lanes 2x2. A square block's rays stay together
 // longer than a row's (they hit fewer different spheres and reflect into
 // nearer directions): 12% less kernel time than 16x1 at 10 000 spheres,
-// the same on the book's scene (docs/performance.md).
+// the same on the book's scene (docs/results/archive.md).
 int packet_rows(const KernelConfig& cfg);
 
 // The lane count used when cfg.lanes is 0 on `dev`: specialized float
 // builds shade 16 pixels per work-item on CPUs whose native float vector
 // width is >= 16 (AVX-512), 8 on other CPUs, 1 on GPUs and on llvmpipe
 // (rusticl), whose work-items are SIMD lanes already (simd_over_work_items);
-// generic and fp64 builds are scalar (1). Measured in docs/performance.md.
+// generic and fp64 builds are scalar (1). Why: docs/developer/kernel.md.
 int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev);
 
 // The slots of the tree walk's pending rays (trace.cl) for a scene that
@@ -65,7 +65,7 @@ double median_sphere_pixels(const Scene& scene, int width);
 // least kRayWalkMinSpheres spheres whose median sphere is smaller than
 // kPacketMinSpherePixels: there the rays of a block part ways within a few
 // levels and a block walks the union of their paths. Measured (PoCL, 16
-// lanes against 1, docs/performance.md "BVH"): 1 000 000 spheres at 5.4 px,
+// lanes against 1, docs/results/README.md): 1 000 000 spheres at 5.4 px,
 // one ray 2.1x faster; 100 000 at 5.8 and 7.7 px, even; 100 000 at 11.6 px
 // and 10 000 at 3.1 to 25 px, the block 1.1 to 1.6x faster.
 constexpr size_t kRayWalkMinSpheres = 100000;

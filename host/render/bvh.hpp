@@ -35,7 +35,7 @@ Accel parse_accel(const std::string& name);
 std::string accel_name(Accel accel);
 
 // Auto uses the hierarchy from this many spheres on: below it testing every
-// sphere is faster (measured, docs/performance.md "BVH").
+// sphere is faster (measured, docs/results/archive.md).
 constexpr size_t kBvhMinSpheres = 32;
 // (the count: spheres and triangles, the primitives the hierarchy holds;
 // planes are unbounded and always tested, bvh_primitive_count())

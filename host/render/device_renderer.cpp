@@ -190,7 +190,7 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   // Always an explicit local size: with NullRange the implementation picks
   // one from the global size, which changes with every band height, and
   // PoCL compiles a new work-group function for each (measured: 1.2 s per
-  // 640x480 frame of 5 ms bands instead of 20 ms; docs/performance.md).
+  // 640x480 frame of 5 ms bands instead of 20 ms; docs/results/archive.md).
   // (check_local_size() bounded both by the device's limits.)
   const size_t lx = size_t(local_.x > 0 ? local_.x : default_local_x_), ly = size_t(local_.y > 0 ? local_.y : 1);
   const cl::NDRange local(lx, ly);

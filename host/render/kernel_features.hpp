@@ -14,7 +14,7 @@ namespace clrt {
 // type) compile-time constants, and unrolls their loops, only up to these
 // counts; past them it keeps the other specializations and loops over the
 // scene's buffers, so build time stays bounded for any scene
-// (docs/performance.md, "Bounded specialization").
+// (docs/reference/kernel.md, "Specialization").
 constexpr size_t kMaxUnrolledSpheres = 16, kMaxUnrolledLights = 16;
 
 // The rule for the bound above.

@@ -1,4 +1,4 @@
-// precision.hpp - the kernel's precision variants (see README, "Precision").
+// precision.hpp - the kernel's precision variants (docs/reference/precision.md).
 #pragma once
 #include <string>
 #include <vector>

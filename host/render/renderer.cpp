@@ -54,7 +54,7 @@ void Renderer::prepare(const Scene& scene, int width, int height, int depth, Sam
   // (Not the calling thread for any of them: PoCL loads a library per
   // compiled kernel into the building thread's dynamic TLS, and with two
   // contexts LeakSanitizer's exit-time scan of the main thread's stale DTLS
-  // crashes; docs/sanitizers.md.)
+  // crashes; docs/developer/sanitizers.md.)
   std::vector<std::exception_ptr> errors(devices_.size());
   std::vector<std::thread> threads;
   auto prepare_device = [&](size_t i) {

@@ -2,7 +2,7 @@
 // book's adaptive variant (--adaptive T) and its subsampling (--subsample).
 // A render setting, like the image size: the scene format has no field for
 // it. The rules, stated in both engines (reference/reference.hpp,
-// kernels/trace.cl), are in the README ("Anti-aliasing", "Subsampling").
+// kernels/trace.cl), are in docs/reference/semantics.md.
 #pragma once
 #include <string>
 

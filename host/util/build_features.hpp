@@ -1,5 +1,5 @@
 // build_features.hpp - what this build of clrt has: the one place that reads
-// CMakeLists.txt's CLRT_LEAN option (README, "Lean build"). A lean build has
+// CMakeLists.txt's CLRT_LEAN option (docs/guide/lean.md). A lean build has
 // OpenCL (and MPI when enabled) only: no OpenImageIO (clrt writes and reads
 // PPM and PFM itself), no PLplot charts, no OBJ meshes (tinyobjloader), no
 // OpenMP/Embree comparison tracers. CMake picks the source files of each

@@ -22,7 +22,7 @@ struct CheckFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Exit statuses, in one place (README "Exit status").
+// Exit statuses, in one place (docs/guide/errors.md).
 constexpr int kExitOk = 0, kExitCheckFailed = 1, kExitBadInput = 2, kExitInternalError = 3;
 
 }  // namespace clrt

@@ -2,7 +2,7 @@
 // on strings that are not UTF-8 (a scene path or --cl-options from the user):
 // such bytes become U+FFFD instead of an exception after all the work.
 // Reports are nlohmann::ordered_json: keys in the order the code adds them
-// (the report header first, README "Machine-readable output").
+// (the report header first, docs/guide/output.md).
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>

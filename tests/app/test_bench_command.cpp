@@ -148,7 +148,7 @@ TEST_CASE("clrt sweep writes one CSV row per depth and both plots", "[cli][sweep
   std::vector<std::string> rows;
   while (std::getline(csv, line)) rows.push_back(line);
   REQUIRE(rows.size() == 3);
-  // The report header's columns first (README "Machine-readable output").
+  // The report header's columns first (docs/guide/output.md).
   CHECK(header.rfind("clrt_version,timestamp_utc,device_driver,device,depth,kernel_ms_median", 0) == 0);
   CHECK(header.find(",error_pixels_off_by_gt1,") != std::string::npos);
   // Depth 0 traces no reflection ray: the rays_reflection column is 0.

@@ -1,5 +1,5 @@
 // test_hardening.cpp - what adversarial input, full disks, hostile
-// directories, bad caches and signals must not break (issue 10): each case
+// directories, bad caches and signals must not break: each case
 // reproduces a failure the earlier code had.
 #include <fcntl.h>
 #include <signal.h>

@@ -1,5 +1,5 @@
 // test_lean_build.cpp - the lean build's own checks (CMakeLists.txt builds
-// this file only with CLRT_LEAN=ON; README "Lean build"): the clrt binary
+// this file only with CLRT_LEAN=ON; docs/guide/lean.md): the clrt binary
 // needs none of the libraries a lean build leaves out; it renders PPM and
 // PFM that read back as the reference's image; every other image format,
 // --plot, OBJ meshes and the comparison tracers are refused, saying why.

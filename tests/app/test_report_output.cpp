@@ -1,5 +1,5 @@
-// test_report_output.cpp - the machine-readable reports (README
-// "Machine-readable output"): every CSV parses with a strict RFC 4180 reader
+// test_report_output.cpp - the machine-readable reports
+// (docs/guide/output.md): every CSV parses with a strict RFC 4180 reader
 // into rows of the header's width, one name per metric across JSON and CSV,
 // the report header (clrt version, timestamp, driver) in every report, keys
 // in their documented order, `devices --json` and `sweep --json`, and null

@@ -1,5 +1,5 @@
 // test_mpi_bench_model.cpp - the farm's performance model
-// (bench/mpi_model.hpp, docs/distributed.md): its arithmetic, not any time.
+// (bench/mpi_model.hpp, docs/developer/distributed.md): its arithmetic, not any time.
 #include <catch2/catch.hpp>
 
 #include "../../bench/mpi_model.hpp"

@@ -50,7 +50,7 @@ TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl][slow]
   }
   REQUIRE(naive);
   REQUIRE(robust);
-  // Naive's floor self-shadowing (README "Precision": ~1.9% of pixels off by
+  // Naive's floor self-shadowing (docs/reference/precision.md: ~1.9% of pixels off by
   // > 1) against robust's few grazing silhouette pixels (<= 0.05%).
   CHECK(naive->error.percent_off_by_gt1() > 1.0);
   CHECK(robust->error.percent_off_by_gt1() <= 0.05);

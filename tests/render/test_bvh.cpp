@@ -184,7 +184,7 @@ TEST_CASE("BVH images equal brute-force images at every precision (1 to 10 000 s
   // Mesa rusticl's llvmpipe renders the every-sphere loop wrong at 10 000
   // spheres (23% of pixels off by more than a level against the reference,
   // against 2.3% on PoCL, whose hierarchy image rusticl's matches; see
-  // docs/performance.md): there the largest scene is left out.
+  // docs/results/README.md): there the largest scene is left out.
   const bool loops_cut_short = device.platform_name.find("rusticl") != std::string::npos;
   for (size_t count : {1, 10, 100, 1000, 10000}) {
     if (count > 1000 && loops_cut_short) {

@@ -315,7 +315,7 @@ TEST_CASE("lane counts: explicit, unresolved and per device", "[features][lanes]
     CHECK(default_lanes(cfg, device("ACCELERATOR", 16)) == 1);
     // Mesa's llvmpipe (rusticl) runs work-items as SIMD lanes on a CPU: 8
     // lanes of pixels per work-item compile 10x longer there and run no
-    // faster (docs/performance.md).
+    // faster (docs/results/archive.md).
     DeviceInfo llvmpipe = device("CPU", 8);
     llvmpipe.platform_name = "rusticl";
     llvmpipe.name = "llvmpipe (LLVM 15.0.6, 256 bits)";

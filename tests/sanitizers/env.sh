@@ -1,11 +1,11 @@
 # env.sh - sanitizer runtime options for the -DCLRT_SANITIZE=ON build. Source
 # it before ctest: `. tests/sanitizers/env.sh && ctest --test-dir build-asan`.
-# docs/sanitizers.md explains every option and suppression.
+# docs/developer/sanitizers.md explains every option and suppression.
 _clrt_san_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 # intercept_tls_get_addr=0: LeakSanitizer (GCC 12, glibc 2.36) read a bogus
 # dynamic-TLS range of a dlopen'ed library at exit ("DTLS 37 at
 # 0x3803-0x800004905", then "Tracer caught signal 11") once PLplot's
-# libraries were linked: docs/sanitizers.md.
+# libraries were linked: docs/developer/sanitizers.md.
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:strict_init_order=1:check_initialization_order=1:intercept_tls_get_addr=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export LSAN_OPTIONS="suppressions=${_clrt_san_dir}/lsan.supp:print_suppressions=0"
