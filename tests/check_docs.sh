@@ -7,7 +7,8 @@
 #  2. Every relative link in README.md and docs/**/*.md names a file that
 #     exists, and a #fragment names a heading of the page it points to
 #     (GitHub's anchors: lower case, punctuation dropped, spaces as hyphens;
-#     headings are written in ASCII letters so that this stays simple).
+#     headings are written in ASCII letters so that this stays simple),
+#     and README.md links every page of docs/ (its map).
 #  3. No page cites the issue tracker by number: a page says what is true.
 #  4. Every ```console block runs. Its lines that start with "$ " are
 #     commands (one line each), run in order by bash in a scratch folder per
@@ -100,6 +101,11 @@ for page in "${pages[@]}"; do
       fi
     fi
   done < <(links "$page")
+done
+
+# The README's map names every page.
+for page in "${pages[@]:1}"; do
+  grep -qF "]($page" README.md || fail "README.md: the map of the documentation does not link $page"
 done
 
 # ---- 3. no issue numbers -------------------------------------------------------
