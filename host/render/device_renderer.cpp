@@ -39,6 +39,7 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
 }
 
 void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth, Sampling sampling, const Bvh* bvh) {
+  ms_per_row_ = 0;  // another scene, size or depth: another rate
   if (requested_lanes_ == 0) {
     KernelConfig requested = config_;
     requested.lanes = 0;
