@@ -55,10 +55,11 @@ std::vector<uint8_t> to_u8(const Image& img);
 // The float files' scale (image_file.hpp: value / 255, 1.0 = white): a colour
 // as they store it, and the colour a stored value stands for: the value
 // times 255, rounded to float. A kernel's colour is a float c, and
-// from_unit(to_unit(c)) == c for every float c in [0, 256] (checked over all
-// of them), so to_u8(from_unit(to_unit(c))) is the canvas rule's value of c
-// bit for bit: what an 8-bit file of the same frame holds (the Python
-// module's arrays are on this scale).
+// to_u8(from_unit(to_unit(c))) == to_u8(c) for every float c (checked once
+// over all of them in [0, 256]; beyond, both clamp): from_unit gives c back,
+// or a float beside it on the same side of every half level, so the stored
+// value quantizes as the 8-bit file of the same frame does, bit for bit (the
+// Python module's arrays are on this scale).
 float to_unit(double v);
 float from_unit(float unit);
 
