@@ -51,12 +51,4 @@ std::vector<uint8_t> to_u8(const Image& img) {
   return out;
 }
 
-float to_unit(double v) {
-  return float(v * (1.0 / 255.0));
-}
-
-float from_unit(float unit) {
-  return float(double(unit) * 255.0);
-}
-
 }  // namespace clrt

@@ -60,7 +60,12 @@ std::vector<uint8_t> to_u8(const Image& img);
 // or a float beside it on the same side of every half level, so the stored
 // value quantizes as the 8-bit file of the same frame does, bit for bit (the
 // Python module's arrays are on this scale).
-float to_unit(double v);
-float from_unit(float unit);
+// (Inline: the renderer stores every channel of a Unit frame through it.)
+inline float to_unit(double v) {
+  return float(v * (1.0 / 255.0));
+}
+inline float from_unit(float unit) {
+  return float(double(unit) * 255.0);
+}
 
 }  // namespace clrt
