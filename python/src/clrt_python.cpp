@@ -99,9 +99,13 @@ void translate(std::exception_ptr p) {
     PyErr_SetString(PyExc_MemoryError, ("out of memory" + (step.empty() ? std::string() : " while " + step)).c_str());
   } catch (const CheckFailure& e) {
     PyErr_SetString(g_error, e.what());
+  } catch (const py::builtin_exception&) {
+    throw;  // (pybind11's own: its translator)
+  } catch (const py::error_already_set&) {
+    throw;
+  } catch (const std::exception& e) {
+    PyErr_SetString(g_error, (std::string("internal error: ") + e.what()).c_str());  // (clrt's exit status 3)
   }
-  // (py::error_already_set and pybind11's own exceptions: pybind11's
-  // translators; any other std::exception: RuntimeError, as pybind11 does.)
 }
 
 // ---- messages of the layers below ----------------------------------------------
@@ -160,7 +164,6 @@ Result run_released(const std::function<Result(const CancelFn&)>& work) {
     worker.join();
   }
   if (interrupted) {
-    queue_log(LogLevel::Info, "stopped by a signal");
     {
       py::error_scope keep;  // (the signal's exception, while the log is flushed)
       try {

@@ -105,7 +105,7 @@ TEST_CASE("PFM is written by clrt itself: little-endian rows bottom to top", "[i
   CHECK_NOTHROW(clrt::check_output_format(dir / "y.pfm"));
 }
 
-TEST_CASE("image_bytes are the bytes write_image writes; a Unit frame writes as its Float twin", "[image]") {
+TEST_CASE("image_bytes are the bytes write_image writes, and a Unit frame writes as its Float twin", "[image]") {
   TempDir dir;
   const clrt::Image img = sample_frame();
   clrt::Image unit(4, 1, clrt::FrameContents{clrt::PixelFormat::Unit, false});

@@ -160,7 +160,7 @@ TEST_CASE("Unit frames hold the float frame's colour on the float files' scale, 
   }
 }
 
-TEST_CASE("a cancel function stops a frame between bands; the renderer renders again", "[opencl][output]") {
+TEST_CASE("a cancel function stops a frame between bands, and the renderer renders again", "[opencl][output]") {
   const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
   KernelConfig cfg;
   cfg.output = kFloatOnly;
