@@ -53,6 +53,11 @@ class Image(_np.ndarray):
     def __array_finalize__(self, obj):
         self.info = getattr(obj, "info", {})
 
+    def __array_wrap__(self, obj, context=None):
+        if obj.shape == ():  # a reduction (img.mean()): a plain numpy scalar, not a 0-d Image
+            return obj[()]
+        return super().__array_wrap__(obj, context)
+
     def to_uint8(self):
         """The 8-bit values by the canvas rule (clamp to [0, 255], round half to even, NaN to 0)."""
         return to_uint8(_np.asarray(self))

@@ -112,6 +112,7 @@ def test_image_wrapper_shows_as_png_and_saves(renderer, tmp_path):
     assert np.array_equal(decode_png(png), img.to_uint8())
     assert img[:, :, 0]._repr_png_() is None  # (a slice is no RGB picture)
     assert (img * 2).info == img.info
+    assert isinstance(img.mean(), np.float32) and not isinstance(img.max(), clrt.Image)
     img.save(tmp_path / "s.pfm")
     assert np.array_equal(read_pfm(str(tmp_path / "s.pfm")), np.asarray(img))
     img.save(tmp_path / "s.ppm")
