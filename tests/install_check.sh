@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# install_check.sh BUILD_DIR SOURCE_DIR - `cmake --install` into a temporary
-# prefix, then the installed tree, moved elsewhere, must work on its own:
-# bin/clrt prints the version of CMakeLists.txt's project(), finds its imaging
-# module under lib*/clrt/ (not the build directory's) and writes a PNG; the
-# bash completion and, when built, the man page are installed.
+# install_check.sh BUILD_DIR SOURCE_DIR [PYTHON PYTHON_DIR] - `cmake --install`
+# into a temporary prefix, then the installed tree, moved elsewhere, must work
+# on its own: bin/clrt prints the version of CMakeLists.txt's project(), finds
+# its imaging module under lib*/clrt/ (not the build directory's) and writes a
+# PNG; the bash completion and, when built, the man page are installed. With
+# PYTHON (the interpreter) and PYTHON_DIR (CLRT_PYTHON_INSTALL_DIR): the Python
+# package under PREFIX/PYTHON_DIR imports from there, loads the same module to
+# encode a PNG, and PYTHON_DIR under /usr/local is on the interpreter's path.
 # Registered with CTest (CMakeLists.txt, "install").
 set -euo pipefail
-build=$1 src=$2
+build=$1 src=$2 python=${3:-} python_dir=${4:-}
 fail() { echo "install_check: FAIL: $*" >&2; exit 1; }
 
 tmp=$(mktemp -d)
@@ -53,6 +56,25 @@ set -e
 CLRT_IMAGEIO_MODULE=${modules[0]} "$clrt" render "$src/scenes/cgfs-demo.json" --engine reference --width 8 \
   --height 8 -o "$tmp/y.png" || fail "CLRT_IMAGEIO_MODULE=installed module"
 
+if [ -n "$python" ]; then
+  site=$root/$python_dir
+  [ -f "$site/clrt/__init__.py" ] && compgen -G "$site/clrt/_clrt*.so" >/dev/null || fail "no Python package in $site/clrt"
+  "$python" -c 'import sys; sys.exit(0 if sys.argv[1] in sys.path else 1)' "/usr/local/$python_dir" ||
+    fail "/usr/local/$python_dir is not on $python's sys.path: the default prefix would need PYTHONPATH"
+  rm -f "$out"
+  PYTHONPATH=$site LD_DEBUG=files "$python" -c '
+import os, sys, clrt
+assert os.path.realpath(clrt.__file__).startswith(os.path.realpath(sys.argv[3])), clrt.__file__
+img = clrt.reference(sys.argv[1], 8, 8)
+open(sys.argv[2], "wb").write(img.to_png())' "$src/scenes/cgfs-demo.json" "$out" "$site" 2>"$tmp/py-ld.log" ||
+    { grep -v "^ *[0-9]*:" "$tmp/py-ld.log" | tail -n 5; fail "the installed Python package"; }
+  [ "$(head -c 8 "$out" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] || fail "the Python package's PNG is not a PNG"
+  grep -q "file=${modules[0]} " "$tmp/py-ld.log" || fail "the Python package did not load the installed module"
+  if grep -oE "file=[^ ]*clrt_imageio\.so " "$tmp/py-ld.log" | grep -vqF "file=${modules[0]} "; then
+    fail "the Python package loaded another module"
+  fi
+fi
+
 completion=$root/share/bash-completion/completions/clrt
 [ -f "$completion" ] || fail "no bash completion"
 bash -n "$completion" || fail "the completion script does not parse"
@@ -62,4 +84,4 @@ if [ -f "$build/clrt.1" ]; then
 else
   echo "install_check: no man page in $build (help2man not found at configure time)"
 fi
-echo "install_check: the installed tree works (clrt $want, module ${modules[0]#"$root"/})"
+echo "install_check: the installed tree works (clrt $want, module ${modules[0]#"$root"/}${python:+, Python package $python_dir/clrt})"

@@ -22,59 +22,6 @@
 namespace clrt {
 
 namespace {
-std::string default_variant_list() {
-  std::string list;
-  for (const AccuracyVariant& v : default_accuracy_variants()) list += (list.empty() ? "" : ",") + v.name();
-  return list;
-}
-
-std::vector<AccuracyVariant> parse_variants(const std::string& list) {
-  std::vector<AccuracyVariant> out;
-  std::stringstream ss(list);
-  std::string name;
-  while (std::getline(ss, name, ','))
-    if (!name.empty()) out.push_back(parse_accuracy_variant(name));
-  if (out.empty()) throw UserError("--variants: empty list");
-  return out;
-}
-
-struct AccuracyOptions {
-  std::vector<std::string> scenes;
-  ImageOptions image;
-  DeviceOptions device;
-  KernelOptions kernel;
-  int repeat = 7;
-  std::string variants = default_variant_list();
-  std::string csv, plot;
-  bool json = false, markdown = false;
-
-  // Checks the options and the output files (before anything is measured).
-  void check() const {
-    image.validate();
-    if (!plot.empty()) check_plot_output(plot);    // fail before measuring
-    if (!csv.empty()) check_writable(csv, "CSV");  // fail before measuring, not after
-    std::vector<NamedOutput> all;
-    if (!csv.empty()) all.push_back({csv, "CSV"});
-    if (!plot.empty()) all.push_back({plot, "plot"});
-    if (json) all.push_back({"-", "JSON"});
-    check_distinct_outputs(all);
-    claim_stdout_if_dash(csv);
-    (void)settings();
-  }
-  // The settings (UserError on a bad precision or variant).
-  AccuracySettings settings() const {
-    AccuracySettings s;
-    s.width = image.width;
-    s.height = image.height;
-    s.depth = image.depth;
-    s.spp = image.spp;
-    s.adaptive = image.adaptive;
-    s.repeat = repeat;
-    s.base = kernel.config();
-    s.variants = parse_variants(variants);
-    return s;
-  }
-};
 
 void report_accuracy(const std::vector<AccuracyRow>& rows, const AccuracyOptions& o, const AccuracySettings& s,
                      const std::string& device, const dist::GridStats* grid) {

@@ -56,60 +56,19 @@ void add_compare_command(CLI::App& app) {
       claim_stdout_if_dash(*diff);
     }
     Scene scene = o->image.load_scene(o->scene_path);
-    int depth = o->image.effective_depth(scene);
-    EngineRun ref_run, cl_run;
-    Image ref = run_engine("reference", scene, *o, depth, &ref_run);
-    const bool classified = image->empty();  // an image file has no hit/shadow data
-    if (classified) {
-      img = run_engine("opencl", scene, *o, depth, &cl_run);
-    } else {
-      img.hit = ref.hit;
-      img.shadowed = ref.shadowed;
-    }
-    Comparison c = compare_images(img, ref);
-    const Verdict verdict = judge(c, *limits);
+    const int depth = o->image.effective_depth(scene);
+    const CompareRun run = run_compare(scene, *o, depth, *limits, image->empty() ? nullptr : &img, *image);
+    const bool classified = run.classified();
+    const Comparison& c = run.comparison;
+    const EngineRun &ref_run = run.reference, &cl_run = run.opencl;
+    const Verdict& verdict = run.verdict;
     if (!diff->empty())
       write_rgb8(
-          diff_image(img, ref), img.width, img.height, *diff,
+          diff_image(run.test, run.ref), run.test.width, run.test.height, *diff,
           image_metadata("clrt compare --diff (|image - reference| x 16, hit flips magenta, shadow flips cyan)", *o,
                          depth, classified ? "opencl" : "image " + *image, classified ? cl_run.device : "-"));
-    const std::string source = time_source(cl_run.frame.host_timed_launches, cl_run.frame.launches);
     if (*as_json) {
-      nlohmann::ordered_json j = header_json(report_header(classified ? cl_run.device : std::string()));
-      j.update(nlohmann::ordered_json{
-          {"scene", o->scene_path},
-          {"width", o->image.width},
-          {"height", o->image.height},
-          {"depth", depth},
-          {"spp", o->image.spp},
-          {"subsample", subsample_name(o->image.subsample)},
-          {"reference_ms", ref_run.wall_ms},
-          {"worst_pixel",
-           {{"x", c.worst_x},
-            {"y", c.worst_y},
-            {"value", {c.worst_test[0], c.worst_test[1], c.worst_test[2]}},
-            {"reference", {c.worst_reference[0], c.worst_reference[1], c.worst_reference[2]}}}}});
-      if (classified)
-        j.update(nlohmann::ordered_json{{"precision", o->kernel.precision},
-                                        {"device", cl_run.device},
-                                        {"build_options", cl_run.options},
-                                        {"opencl_kernel_ms", cl_run.frame.kernel_ms},
-                                        {"opencl_kernel_time_source", source},
-                                        {"opencl_build_ms", cl_run.frame.build_ms},
-                                        {"opencl_build_cached", cl_run.frame.build_cached},
-                                        {"opencl_total_ms", cl_run.wall_ms}});
-      else
-        j["image"] = *image;
-      j.update(comparison_json(c));
-      if (!classified) j["hit_flip_pixels"] = j["shadow_flip_pixels"] = nullptr;
-      if (limits->any()) {
-        j["fail_percent"] =
-            limits->fail_percent >= 0 ? nlohmann::ordered_json(limits->fail_percent) : nlohmann::ordered_json();
-        j["fail_max_8bit"] =
-            limits->fail_max >= 0 ? nlohmann::ordered_json(limits->fail_max) : nlohmann::ordered_json();
-        j["verdict"] = verdict.pass ? "pass" : "fail";
-      }
-      std::printf("%s\n", json_text(j).c_str());
+      std::printf("%s\n", json_text(compare_json(run, *o)).c_str());
     } else {
       std::fprintf(report_stream(), 
           "scene          %s  %dx%d  depth %d  spp %d%s  precision %s\n", o->scene_path.c_str(), o->image.width,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/compare_report.hpp"
+#include "app/devices_report.hpp"
 #include "app/options.hpp"
 #include "app/report_header.hpp"
 #include "cl/device.hpp"
@@ -40,54 +41,16 @@ void add_devices_command(CLI::App& app) {
   cmd->add_option("--precision", *precision, "Precision variant for --check")->capture_default_str();
   cmd->add_flag("--json", *as_json, "Print one JSON object: the report header and every device (and its check)");
   cmd->callback([check, precision, as_json] {
+    if (*as_json) {
+      int failed = 0;
+      std::printf("%s\n", json_text(devices_json(*check, *precision, &failed)).c_str());
+      if (failed) throw CheckFailure(std::to_string(failed) + " device(s) failed the self-test");
+      return;
+    }
     KernelConfig cfg;
     cfg.precision = parse_precision(*precision);
     auto devs = list_devices();
     const size_t chosen = default_device(devs);
-    if (*as_json) {
-      std::vector<std::string> names;
-      for (const auto& d : devs) names.push_back(d.name);
-      nlohmann::ordered_json out = header_json(report_header(names));
-      nlohmann::ordered_json arr = nlohmann::ordered_json::array();
-      int failed = 0;
-      for (const auto& d : devs) {
-        nlohmann::ordered_json j = {{"index", d.index},
-                                    {"platform_device", platform_device_id(d)},
-                                    {"default", size_t(d.index) == chosen},
-                                    {"platform", d.platform_name},
-                                    {"name", d.name},
-                                    {"vendor", d.vendor},
-                                    {"type", d.type},
-                                    {"opencl_version", d.version},
-                                    {"opencl_c_version", d.c_version},
-                                    {"driver_version", d.driver},
-                                    {"compute_units", d.compute_units},
-                                    {"clock_mhz", d.clock_mhz},
-                                    {"fp64", d.fp64},
-                                    {"global_memory_bytes", d.global_mem},
-                                    {"max_alloc_bytes", d.max_alloc},
-                                    {"max_work_group_size", d.max_work_group}};
-        if (*check) {
-          DeviceCheckResult r = check_device(d, cfg);
-          nlohmann::ordered_json c = {{"precision", *precision}, {"pass", r.pass}};
-          if (!r.error.empty()) {
-            c["error"] = r.error;
-          } else {
-            c.update(nlohmann::ordered_json{{"build_ms", r.build_ms},
-                                            {"kernel_ms", r.kernel_ms},
-                                            {"kernel_time_source", time_source(r.host_timed_launches, r.launches)}});
-            c.update(comparison_json(r.cmp));
-          }
-          j["check"] = c;
-          failed += !r.pass;
-        }
-        arr.push_back(j);
-      }
-      out["devices"] = arr;
-      std::printf("%s\n", json_text(out).c_str());
-      if (failed) throw CheckFailure(std::to_string(failed) + " device(s) failed the self-test");
-      return;
-    }
     // The first column stays the global index (tests/every_device.sh reads it).
     std::printf("%-5s %-5s %-28s %-52s %-6s %-18s %4s %5s %9s  %s\n", "index", "P:D", "platform", "device", "type",
                 "OpenCL C", "CUs", "fp64", "memory", "driver");

@@ -119,16 +119,7 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_flag("--json", *as_json, "Print one JSON object instead of the table");
   cmd->callback([o, depths, devices, csv, plot, repeat, omp, as_json] {
     const SweepOutputs out{*csv, *plot, *as_json};
-    SweepSettings s;
-    s.bench.width = o->image.width;
-    s.bench.height = o->image.height;
-    s.bench.spp = o->image.spp;
-    s.bench.subsample = o->image.subsample;
-    s.bench.adaptive = o->image.adaptive;
-    s.bench.repeat = *repeat;
-    s.bench.omp = *omp;
-    s.bench.embree = false;  // (bench's comparison; the sweep reports OpenMP only)
-    s.bench.builds = false;
+    SweepSettings s = sweep_settings(*o, *repeat, *omp);
     s.progress = stderr_progress();  // on a terminal only, not with --quiet
     if (dist::world().distributed()) return sweep_across_ranks(*o, *depths, *devices, s, out);
     o->validate();

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/report_header.hpp"
+#include "cl/launch_timing.hpp"
+
 namespace clrt {
 
 std::vector<std::pair<std::string, nlohmann::ordered_json>> comparison_metrics(const Comparison& c) {
@@ -46,6 +49,46 @@ std::string format_psnr(double psnr) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2f", psnr);
   return buf;
+}
+
+nlohmann::ordered_json compare_json(const CompareRun& r, const RenderOptions& o) {
+  const Comparison& c = r.comparison;
+  const bool classified = r.classified();
+  nlohmann::ordered_json j = header_json(report_header(classified ? r.opencl.device : std::string()));
+  j.update(nlohmann::ordered_json{
+      {"scene", o.scene_path},
+      {"width", o.image.width},
+      {"height", o.image.height},
+      {"depth", r.depth},
+      {"spp", o.image.spp},
+      {"subsample", subsample_name(o.image.subsample)},
+      {"reference_ms", r.reference.wall_ms},
+      {"worst_pixel",
+       {{"x", c.worst_x},
+        {"y", c.worst_y},
+        {"value", {c.worst_test[0], c.worst_test[1], c.worst_test[2]}},
+        {"reference", {c.worst_reference[0], c.worst_reference[1], c.worst_reference[2]}}}}});
+  if (classified)
+    j.update(nlohmann::ordered_json{
+        {"precision", o.kernel.precision},
+        {"device", r.opencl.device},
+        {"build_options", r.opencl.options},
+        {"opencl_kernel_ms", r.opencl.frame.kernel_ms},
+        {"opencl_kernel_time_source", time_source(r.opencl.frame.host_timed_launches, r.opencl.frame.launches)},
+        {"opencl_build_ms", r.opencl.frame.build_ms},
+        {"opencl_build_cached", r.opencl.frame.build_cached},
+        {"opencl_total_ms", r.opencl.wall_ms}});
+  else
+    j["image"] = r.image;
+  j.update(comparison_json(c));
+  if (!classified) j["hit_flip_pixels"] = j["shadow_flip_pixels"] = nullptr;
+  if (r.limits.any()) {
+    j["fail_percent"] =
+        r.limits.fail_percent >= 0 ? nlohmann::ordered_json(r.limits.fail_percent) : nlohmann::ordered_json();
+    j["fail_max_8bit"] = r.limits.fail_max >= 0 ? nlohmann::ordered_json(r.limits.fail_max) : nlohmann::ordered_json();
+    j["verdict"] = r.verdict.pass ? "pass" : "fail";
+  }
+  return j;
 }
 
 }  // namespace clrt

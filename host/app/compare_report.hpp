@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "app/engine.hpp"
+#include "app/options.hpp"
 #include "eval/compare.hpp"
 #include "util/csv.hpp"
 
@@ -27,5 +29,11 @@ void comparison_csv(CsvTable& t, const Comparison& c, const std::string& prefix 
 
 // "inf" for an infinite PSNR, otherwise the number with 2 decimals.
 std::string format_psnr(double psnr);
+
+// `clrt compare --json`'s object (docs/guide/output.md): the report header,
+// the options of `o` and the run's figures, the metrics above, and the
+// limits and verdict when any limit is set. The Python module's
+// clrt.compare() returns the same object.
+nlohmann::ordered_json compare_json(const CompareRun& c, const RenderOptions& o);
 
 }  // namespace clrt

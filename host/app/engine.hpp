@@ -4,9 +4,11 @@
 #include <string>
 
 #include "app/options.hpp"
+#include "eval/compare.hpp"
 #include "image/image.hpp"
 #include "render/renderer.hpp"
 #include "scene/scene.hpp"
+#include "util/progress.hpp"
 
 namespace clrt {
 
@@ -20,7 +22,28 @@ struct EngineRun {
 
 // `contents`: what the OpenCL frame must hold (render asks for what its
 // output file needs); the reference always gives float colour and classes.
+// `cancel` (optional): asked between bands (OpenCL) or columns (the
+// reference); true: Cancelled (util/error.hpp).
 Image run_engine(const std::string& engine, const Scene& scene, const RenderOptions& o, int depth, EngineRun* run,
-                 FrameContents contents = {});
+                 FrameContents contents = {}, const CancelFn& cancel = {});
+
+// What `clrt compare` measured: the reference, and OpenCL or an image file,
+// and their comparison and verdict.
+struct CompareRun {
+  int depth = 0;
+  EngineRun reference, opencl;  // opencl: empty where an image file was compared
+  std::string image;            // that file's path; "": OpenCL
+  Image test, ref;              // the images compared (--diff)
+  Comparison comparison;
+  Thresholds limits;
+  Verdict verdict;
+  bool classified() const { return !opencl.engine.empty(); }  // hit/shadow classes known (OpenCL)
+};
+// Renders `scene` (fitted to o.image: ImageOptions::load_scene) with the
+// reference and, unless `image` (read from `image_path`) is given, with
+// OpenCL, and compares them against `limits`.
+CompareRun run_compare(const Scene& scene, const RenderOptions& o, int depth, const Thresholds& limits,
+                       const Image* image = nullptr, const std::string& image_path = "",
+                       const CancelFn& cancel = {});
 
 }  // namespace clrt

@@ -5,15 +5,18 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 
 #include "clrt_layout.h"
+#include "image/plot.hpp"
 #include "render/precision.hpp"
 #include "scene/ray_tree.hpp"
 #include "scene/scene_json.hpp"
 #include "scene/viewport.hpp"
 #include "util/error.hpp"
 #include "util/log.hpp"
+#include "util/output_file.hpp"
 
 namespace clrt {
 
@@ -71,7 +74,10 @@ void ImageOptions::validate() const {
 }
 
 Scene ImageOptions::load_scene(const std::string& path, bool warn) const {
-  Scene scene = clrt::load_scene(path);
+  return fit_scene(clrt::load_scene(path), path, warn);
+}
+
+Scene ImageOptions::fit_scene(Scene scene, const std::string& path, bool warn) const {
   if (!aspect.empty()) scene.camera.aspect_from_image = aspect == "image";
   scene.camera = camera_for_image(scene.camera, width, height);
   if (!warn) return scene;
@@ -218,6 +224,66 @@ void RenderOptions::validate() const {
     throw UserError("unknown engine \"" + engine + "\" (expected opencl or reference)");
   launch.validate();
   (void)kernel.config();
+}
+
+namespace {
+
+std::vector<AccuracyVariant> parse_variants(const std::string& list) {
+  std::vector<AccuracyVariant> out;
+  std::stringstream ss(list);
+  std::string name;
+  while (std::getline(ss, name, ','))
+    if (!name.empty()) out.push_back(parse_accuracy_variant(name));
+  if (out.empty()) throw UserError("--variants: empty list");
+  return out;
+}
+
+}  // namespace
+
+std::string AccuracyOptions::default_variant_list() {
+  std::string list;
+  for (const AccuracyVariant& v : default_accuracy_variants()) list += (list.empty() ? "" : ",") + v.name();
+  return list;
+}
+
+void AccuracyOptions::check() const {
+  image.validate();
+  if (!plot.empty()) check_plot_output(plot);    // fail before measuring
+  if (!csv.empty()) check_writable(csv, "CSV");  // fail before measuring, not after
+  std::vector<NamedOutput> all;
+  if (!csv.empty()) all.push_back({csv, "CSV"});
+  if (!plot.empty()) all.push_back({plot, "plot"});
+  if (json) all.push_back({"-", "JSON"});
+  check_distinct_outputs(all);
+  claim_stdout_if_dash(csv);
+  (void)settings();
+}
+
+AccuracySettings AccuracyOptions::settings() const {
+  AccuracySettings s;
+  s.width = image.width;
+  s.height = image.height;
+  s.depth = image.depth;
+  s.spp = image.spp;
+  s.adaptive = image.adaptive;
+  s.repeat = repeat;
+  s.base = kernel.config();
+  s.variants = parse_variants(variants);
+  return s;
+}
+
+SweepSettings sweep_settings(const RenderOptions& o, int repeat, bool omp) {
+  SweepSettings s;
+  s.bench.width = o.image.width;
+  s.bench.height = o.image.height;
+  s.bench.spp = o.image.spp;
+  s.bench.subsample = o.image.subsample;
+  s.bench.adaptive = o.image.adaptive;
+  s.bench.repeat = repeat;
+  s.bench.omp = omp;
+  s.bench.embree = false;  // (bench's comparison; the sweep reports OpenMP only)
+  s.bench.builds = false;
+  return s;
 }
 
 void add_number_checks(CLI::App* cmd) {

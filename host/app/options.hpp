@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "cl/device.hpp"
+#include "eval/accuracy.hpp"
+#include "eval/sweep.hpp"
 #include "render/renderer.hpp"
 #include "scene/sampling.hpp"
 #include "scene/scene.hpp"
@@ -56,6 +58,9 @@ struct ImageOptions {
   // square and one when its ray tree may take hours (scene/ray_tree.hpp);
   // warn = false: without them (a scene loaded again for its frame).
   Scene load_scene(const std::string& path, bool warn = true) const;
+  // The same for a scene already parsed, named `name` in the warnings (the
+  // Python module's scenes).
+  Scene fit_scene(Scene scene, const std::string& name, bool warn = true) const;
 };
 
 // --device: one device, or (several = true) a list / 'all'.
@@ -128,6 +133,30 @@ struct RenderOptions {
   void validate() const;
   RenderSettings settings() const { return RenderSettings{kernel.config(), launch.tiles(), launch.local()}; }
 };
+
+// `clrt accuracy`'s options: SCENE... and every group, --repeat, --variants
+// and its outputs.
+struct AccuracyOptions {
+  std::vector<std::string> scenes;
+  ImageOptions image;
+  DeviceOptions device;
+  KernelOptions kernel;
+  int repeat = 7;
+  std::string variants = default_variant_list();
+  std::string csv, plot;
+  bool json = false, markdown = false;
+
+  // Checks the options and the output files (before anything is measured).
+  void check() const;
+  // The settings (UserError on a bad precision or variant).
+  AccuracySettings settings() const;
+  // Every variant of default_accuracy_variants(), comma-separated.
+  static std::string default_variant_list();
+};
+
+// `clrt sweep`'s settings from its options (the depths are the caller's:
+// parse_depth_range; progress none).
+SweepSettings sweep_settings(const RenderOptions& o, int repeat, bool omp);
 
 // --depths: "A:B" (inclusive, 0 <= A <= B <= CLRT_MAX_DEPTH) or a single "N";
 // UserError on anything else.

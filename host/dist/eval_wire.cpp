@@ -12,11 +12,11 @@ namespace clrt::dist {
 #if defined(__x86_64__) && defined(__GLIBCXX__)
 static_assert(sizeof(Stats) == 48, "Stats changed: update put_stats/get_stats");
 static_assert(sizeof(Comparison) == 120, "Comparison changed: update put_comparison/get_comparison");
-static_assert(sizeof(Image) == 112, "Image changed: update put_image/get_image");
+static_assert(sizeof(Image) == 136, "Image changed: update put_image/get_image");
 static_assert(sizeof(RayCounts) == 40, "RayCounts changed: update put_bench/get_bench");
 static_assert(sizeof(PeakFlops) == 104, "PeakFlops changed: update put_bench/get_bench");
-static_assert(sizeof(BenchResult) == 1232, "BenchResult changed: update put_bench/get_bench");
-static_assert(sizeof(SweepRow) == 1576, "SweepRow changed: update encode_sweep_row/decode_sweep_row");
+static_assert(sizeof(BenchResult) == 1280, "BenchResult changed: update put_bench/get_bench");
+static_assert(sizeof(SweepRow) == 1624, "SweepRow changed: update encode_sweep_row/decode_sweep_row");
 static_assert(sizeof(AccuracyRow) == 264, "AccuracyRow changed: update encode_accuracy_row/decode_accuracy_row");
 #endif
 
@@ -92,7 +92,8 @@ void put_image(Writer& w, const Image& img) {
   w.put<int32_t>(int32_t(img.contents.pixels)), w.put<uint8_t>(img.contents.classes);
   // Each buffer with its length: an image's buffers are empty or sized for
   // its contents, and a default Image() holds none.
-  put_vector(w, img.rgb), put_vector(w, img.rgba8), put_vector(w, img.hit), put_vector(w, img.shadowed);
+  put_vector(w, img.rgb), put_vector(w, img.rgba8), put_vector(w, img.unit);
+  put_vector(w, img.hit), put_vector(w, img.shadowed);
 }
 
 Image get_image(Reader& r) {
@@ -100,17 +101,19 @@ Image get_image(Reader& r) {
   img.width = r.get<int32_t>(), img.height = r.get<int32_t>();
   const int32_t pixels = r.get<int32_t>();
   if (img.width < 0 || img.height < 0 ||
-      (pixels != int32_t(PixelFormat::Float) && pixels != int32_t(PixelFormat::Rgba8)))
+      (pixels != int32_t(PixelFormat::Float) && pixels != int32_t(PixelFormat::Rgba8) &&
+       pixels != int32_t(PixelFormat::Unit)))
     throw DeviceError("MPI: an image message with a bad size or format");
   img.contents.pixels = PixelFormat(pixels);
   img.contents.classes = r.get<uint8_t>() != 0;
-  img.rgb = get_vector<double>(r), img.rgba8 = get_vector<uint8_t>(r);
+  img.rgb = get_vector<double>(r), img.rgba8 = get_vector<uint8_t>(r), img.unit = get_vector<float>(r);
   img.hit = get_vector<int32_t>(r), img.shadowed = get_vector<int32_t>(r);
   // Every buffer empty or sized for the image (compare_images reads them
   // by the size).
   const size_t n = size_t(img.width) * size_t(img.height);
   const auto sized = [n](size_t got, size_t per_pixel) { return got == 0 || got == n * per_pixel; };
-  if (!sized(img.rgb.size(), 3) || !sized(img.rgba8.size(), 4) || !sized(img.hit.size(), 1) ||
+  if (!sized(img.rgb.size(), 3) || !sized(img.rgba8.size(), 4) || !sized(img.unit.size(), 3) ||
+      !sized(img.hit.size(), 1) ||
       !sized(img.shadowed.size(), 1))
     throw DeviceError("MPI: an image message whose buffers do not fit its size");
   return img;

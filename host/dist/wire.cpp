@@ -100,7 +100,10 @@ Scene decode_scene(const Bytes& b) {
 }
 
 size_t row_pixel_bytes(const FrameContents& c) {
-  return (c.pixels == PixelFormat::Float ? 3 * sizeof(double) : 4) + (c.classes ? 2 * sizeof(int32_t) : 0);
+  const size_t colour = c.pixels == PixelFormat::Float  ? 3 * sizeof(double)
+                        : c.pixels == PixelFormat::Unit ? 3 * sizeof(float)
+                                                        : 4;
+  return colour + (c.classes ? 2 * sizeof(int32_t) : 0);
 }
 
 std::vector<Span> row_pieces(Image& img, int y0, int y1) {
@@ -108,6 +111,8 @@ std::vector<Span> row_pieces(Image& img, int y0, int y1) {
   std::vector<Span> pieces;
   if (img.contents.pixels == PixelFormat::Float)
     pieces.push_back({img.rgb.data() + first * 3, count * 3 * sizeof(double)});
+  else if (img.contents.pixels == PixelFormat::Unit)
+    pieces.push_back({img.unit.data() + first * 3, count * 3 * sizeof(float)});
   else
     pieces.push_back({img.rgba8.data() + first * 4, count * 4});
   if (img.contents.classes) {

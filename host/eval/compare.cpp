@@ -21,6 +21,8 @@ double clamp255(double v) {
 Comparison compare_images(const Image& test, const Image& ref) {
   if (test.width != ref.width || test.height != ref.height)
     throw std::invalid_argument("compare_images: size mismatch");
+  if (test.rgb.size() != test.pixels() * 3 || ref.rgb.size() != ref.pixels() * 3)
+    throw std::invalid_argument("compare_images: both images need float colour (PixelFormat::Float)");
   Comparison c;
   c.pixels = ref.pixels();
   double se8 = 0, sef = 0;

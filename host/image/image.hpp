@@ -14,6 +14,7 @@ namespace clrt {
 enum class PixelFormat {
   Float,  // rgb: unclamped doubles (float outputs, comparisons with the reference)
   Rgba8,  // rgba8: the canvas rule of to_u8() applied, alpha 255 (8-bit outputs)
+  Unit,   // unit: float32 on the float files' scale, to_unit() (the Python module's arrays)
 };
 
 // What a frame carries. The OpenCL kernel writes only these
@@ -31,6 +32,7 @@ struct Image {
   FrameContents contents;
   std::vector<double> rgb;        // Float: width*height*3, row 0 at the top, unclamped
   std::vector<uint8_t> rgba8;     // Rgba8: width*height*4, row 0 at the top
+  std::vector<float> unit;        // Unit: width*height*3, row 0 at the top, to_unit(colour), unclamped
   std::vector<int32_t> hit;       // with classes: primary-ray sphere index, -1 = background
   std::vector<int32_t> shadowed;  // with classes: bit i: light i blocked at the primary hit
 
@@ -46,8 +48,24 @@ struct Image {
 // Canvas semantics: clamp to [0, 255], round to nearest with ties to even;
 // NaN becomes 0 (like a Uint8ClampedArray).
 uint8_t to_u8(double v);
-// The image's 8-bit RGB (width*height*3): quantized from Float colour, or
-// Rgba8's colour without its alpha.
+// The image's 8-bit RGB (width*height*3): quantized from Float or Unit
+// colour (from_unit), or Rgba8's colour without its alpha.
 std::vector<uint8_t> to_u8(const Image& img);
+
+// The float files' scale (image_file.hpp: value / 255, 1.0 = white): a colour
+// as they store it, and the colour a stored value stands for: the value
+// times 255, rounded to float. A kernel's colour is a float c, and
+// to_u8(from_unit(to_unit(c))) == to_u8(c) for every float c (checked once
+// over all of them in [0, 256]; beyond, both clamp): from_unit gives c back,
+// or a float beside it on the same side of every half level, so the stored
+// value quantizes as the 8-bit file of the same frame does, bit for bit (the
+// Python module's arrays are on this scale).
+// (Inline: the renderer stores every channel of a Unit frame through it.)
+inline float to_unit(double v) {
+  return float(v * (1.0 / 255.0));
+}
+inline float from_unit(float unit) {
+  return float(double(unit) * 255.0);
+}
 
 }  // namespace clrt

@@ -156,27 +156,66 @@ std::string encode(const std::string& path, const std::string& name, int w, int 
   return scratch.read();
 }
 
-// (Callers checked OUT before the work with check_output_format();
-// write_output() meets any change since.)
-void write_pixels(const std::string& path, const std::string& format, int w, int h, imageio::PixelType type,
-                  const void* data, const ImageMetadata& metadata) {
-  const OutputKind kind = resolve_output(path).kind;
-  check_image_format(path, kind, format);
-  const std::string name = format_name(path, kind, format);
+// The bytes of a file of `name`'s format (its extension) holding the pixels;
+// `path` names it in errors.
+std::string pixel_bytes(const std::string& path, const std::string& name, int w, int h, imageio::PixelType type,
+                        const void* data, const ImageMetadata& metadata) {
   const std::string ext = lowercase_extension(name);
-  std::string bytes;
   if (ext == "pfm") {
     const size_t n = size_t(w) * h * 3;
     std::vector<float> f(n);
     for (size_t i = 0; i < n; ++i)  // (8-bit data, a --diff image: 255 = 1.0)
       f[i] = type == imageio::PixelType::Float ? static_cast<const float*>(data)[i]
                                                : float(static_cast<const uint8_t*>(data)[i] / 255.0);
-    bytes = encode_pfm(w, h, f);
-  } else {
-    bytes = encode(path, name, w, h, type, data, metadata);
-    if (comment_header_ext(ext)) bytes = with_header_comments(std::move(bytes), metadata);
+    return encode_pfm(w, h, f);
   }
-  write_output(path, bytes);
+  std::string bytes = encode(path, name, w, h, type, data, metadata);
+  if (comment_header_ext(ext)) bytes = with_header_comments(std::move(bytes), metadata);
+  return bytes;
+}
+
+// (Callers checked OUT before the work with check_output_format();
+// write_output() meets any change since.)
+void write_pixels(const std::string& path, const std::string& format, int w, int h, imageio::PixelType type,
+                  const void* data, const ImageMetadata& metadata) {
+  const OutputKind kind = resolve_output(path).kind;
+  check_image_format(path, kind, format);
+  write_output(path, pixel_bytes(path, format_name(path, kind, format), w, h, type, data, metadata));
+}
+
+// What a file of a float format (or not) holds of `img`: the colour tags,
+// then the caller's metadata, and the pixels, float (to_unit()) or 8-bit.
+struct FilePixels {
+  ImageMetadata metadata;
+  imageio::PixelType type = imageio::PixelType::UInt8;
+  std::vector<float> unit;
+  std::vector<uint8_t> u8;
+  const void* data() const {
+    return type == imageio::PixelType::Float ? static_cast<const void*>(unit.data()) : u8.data();
+  }
+};
+
+FilePixels file_pixels(const Image& img, bool floating, const ImageMetadata& metadata, const std::string& path) {
+  FilePixels px;
+  // The colour tags come first; the caller's metadata cannot replace them.
+  px.metadata = {{"oiio:ColorSpace", "sRGB"}, {kWhiteKey, floating ? "1" : "255"}};
+  for (const auto& kv : metadata)
+    if (kv.first != "oiio:ColorSpace" && kv.first != kWhiteKey) px.metadata.push_back({kv.first, one_line(kv.second)});
+  if (floating) {
+    static_assert(kFloatWhite == 1.0, "to_unit() stores 255 as 1.0");
+    px.type = imageio::PixelType::Float;
+    if (img.contents.pixels == PixelFormat::Unit) {
+      px.unit = img.unit;
+    } else {
+      if (img.contents.pixels != PixelFormat::Float)
+        throw std::logic_error("write_image: " + path + " needs float colour, the frame holds 8-bit");
+      px.unit.resize(img.rgb.size());
+      for (size_t i = 0; i < px.unit.size(); ++i) px.unit[i] = to_unit(img.rgb[i]);
+    }
+  } else {
+    px.u8 = to_u8(img);
+  }
+  return px;
 }
 
 // The "# key=value" comment lines of a PPM or HDR header (read_metadata).
@@ -227,20 +266,16 @@ void write_image(const Image& img, const std::string& path, const ImageMetadata&
                  const std::string& format_in) {
   const std::string format = format_arg(format_in);
   const bool floating = output_pixel_format(path, format) == PixelFormat::Float;
-  // The colour tags come first; the caller's metadata cannot replace them.
-  ImageMetadata meta{{"oiio:ColorSpace", "sRGB"}, {kWhiteKey, floating ? "1" : "255"}};
-  for (const auto& kv : metadata)
-    if (kv.first != "oiio:ColorSpace" && kv.first != kWhiteKey) meta.push_back({kv.first, one_line(kv.second)});
-  if (floating) {
-    if (img.contents.pixels != PixelFormat::Float)
-      throw std::logic_error("write_image: " + path + " needs float colour, the frame holds 8-bit");
-    std::vector<float> f(img.rgb.size());
-    for (size_t i = 0; i < f.size(); ++i) f[i] = float(img.rgb[i] * (kFloatWhite / 255.0));
-    write_pixels(path, format, img.width, img.height, imageio::PixelType::Float, f.data(), meta);
-  } else {
-    auto u8 = to_u8(img);
-    write_pixels(path, format, img.width, img.height, imageio::PixelType::UInt8, u8.data(), meta);
-  }
+  const FilePixels px = file_pixels(img, floating, metadata, path);
+  write_pixels(path, format, img.width, img.height, px.type, px.data(), px.metadata);
+}
+
+std::string image_bytes(const Image& img, const std::string& format_in, const ImageMetadata& metadata) {
+  const std::string format = format_arg(format_in);
+  const std::string name = "image." + format;
+  check_image_format(name, OutputKind::File, "");
+  const FilePixels px = file_pixels(img, is_float_ext(format), metadata, name);
+  return pixel_bytes(name, name, img.width, img.height, px.type, px.data(), px.metadata);
 }
 
 ImageMetadata read_metadata(const std::string& path, const std::vector<std::string>& keys) {

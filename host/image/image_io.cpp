@@ -32,6 +32,11 @@ constexpr const char* kFileName = "clrt_imageio.so";
 
 std::atomic<bool> g_loaded{false};
 
+// set_library_location(): the library's folder ("" in the clrt binary) and
+// the module's place relative to it.
+std::mutex g_library_mutex;
+std::string g_library_dir, g_module_from_library;
+
 std::string executable_dir() {
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
@@ -103,18 +108,37 @@ std::vector<std::string> module_candidates() {
   const char* env = std::getenv("CLRT_IMAGEIO_MODULE");
   if (env && *env) return {env};
   std::vector<std::string> out;
-  const std::string exe_dir = executable_dir();
-  if (!exe_dir.empty()) out.push_back(exe_dir + "/" + kFileName);
-  const std::string from_bin = CLRT_IMAGEIO_FROM_BIN;
-  if (!exe_dir.empty() && !from_bin.empty())
-    out.push_back((std::filesystem::path(exe_dir) / from_bin / kFileName).lexically_normal().string());
-  // The build tree's module only for a binary inside that tree (a test or
-  // benchmark in a folder of it): a copied or installed clrt never loads a
-  // module from a build folder, which anyone may recreate once it is gone.
   const std::string build_dir = CLRT_IMAGEIO_BUILD_DIR;
-  if (!build_dir.empty() && !exe_dir.empty() && exe_dir.rfind(build_dir + "/", 0) == 0)
-    out.push_back(build_dir + "/" + kFileName);
+  const auto in_build_dir = [&](const std::string& dir) {
+    return !build_dir.empty() && !dir.empty() && dir.rfind(build_dir + "/", 0) == 0;
+  };
+  std::string code_dir;  // the folder of the file that holds this code
+  {
+    std::lock_guard<std::mutex> lock(g_library_mutex);
+    code_dir = g_library_dir;
+    // (A library in the build tree has no installed tree around it.)
+    if (!code_dir.empty() && !g_module_from_library.empty() && !in_build_dir(code_dir))
+      out.push_back((std::filesystem::path(code_dir) / g_module_from_library / kFileName).lexically_normal().string());
+  }
+  if (code_dir.empty()) {
+    code_dir = executable_dir();
+    if (!code_dir.empty()) out.push_back(code_dir + "/" + kFileName);
+    const std::string from_bin = CLRT_IMAGEIO_FROM_BIN;
+    if (!code_dir.empty() && !from_bin.empty())
+      out.push_back((std::filesystem::path(code_dir) / from_bin / kFileName).lexically_normal().string());
+  }
+  // The build tree's module only for a binary (or library) inside that tree
+  // (a test or benchmark in a folder of it): a copied or installed clrt
+  // never loads a module from a build folder, which anyone may recreate once
+  // it is gone.
+  if (in_build_dir(code_dir)) out.push_back(build_dir + "/" + kFileName);
   return out;
+}
+
+void set_library_location(const std::string& library_dir, const std::string& module_from_library) {
+  std::lock_guard<std::mutex> lock(g_library_mutex);
+  g_library_dir = library_dir;
+  g_module_from_library = module_from_library;
 }
 
 void check_module_present() {

@@ -106,8 +106,19 @@ bool module_loaded();
 // when set, the only place), beside the running executable
 // (/proc/self/exe), where `cmake --install` puts it relative to the
 // executable (CLRT_IMAGEIO_FROM_BIN, e.g. ../lib/clrt), and the build
-// directory this binary was built in.
+// directory this binary was built in (only for a binary inside it). In a
+// shared library that set_library_location() named, the library's places
+// instead of the executable's.
 std::vector<std::string> module_candidates();
+// Code of clrt's that runs in a shared library of another program (the
+// Python module, python/: the executable is python3) names the library's
+// folder (absolute, as the library found it) and where `cmake --install`
+// puts the module relative to that folder (CLRT_IMAGEIO_FROM_PYTHON, e.g.
+// ../../../clrt). The module is then looked for at that relative place and,
+// for a library inside the build directory, in the build directory, never
+// beside the executable (another program's folder). Call it before the
+// first image is read or written.
+void set_library_location(const std::string& library_dir, const std::string& module_from_library);
 
 }  // namespace imageio
 }  // namespace clrt

@@ -174,5 +174,7 @@ std::vector<std::string> module_candidates() {
   return {};
 }
 
+void set_library_location(const std::string&, const std::string&) {}  // (nothing is looked for)
+
 }  // namespace imageio
 }  // namespace clrt

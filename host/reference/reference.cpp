@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "util/doing.hpp"
+#include "util/error.hpp"
 
 namespace clrt {
 namespace {
@@ -288,7 +289,8 @@ class Tracer {
 
 }  // namespace
 
-Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling) {
+Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling,
+                       const CancelFn& cancel) {
   const int n = sampling.spp;
   if (n < 1) throw std::invalid_argument("render_reference: spp must be >= 1");
   if (sampling.subsample != Subsample::Off && n != 1)
@@ -313,6 +315,7 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
     for (int x = -width / 2; x < width - width / 2; ++x) {
       const int col = width / 2 + x;
       if (passes == 2 && col % 2 != pass) continue;
+      if (cancel && cancel()) throw Cancelled("reference render cancelled");
       for (int y = height / 2 - height; y < height / 2; ++y) {  // row in [0, H)
         int row = height / 2 - y - 1;
         size_t p = size_t(row) * width + col;

@@ -5,6 +5,7 @@
 #include "image/image.hpp"
 #include "scene/sampling.hpp"
 #include "scene/scene.hpp"
+#include "util/progress.hpp"
 
 namespace clrt {
 
@@ -42,6 +43,10 @@ namespace clrt {
 // primitive alone (the full search where it misses it; background where both
 // missed) and shaded as usual, with Interpolate the mean of their canvas
 // colours. Other pixels are traced as usual.
-Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling = {});
+//
+// `cancel` (optional) is asked once per column of the canvas; true: Cancelled
+// (util/error.hpp) is thrown.
+Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling = {},
+                       const CancelFn& cancel = {});
 
 }  // namespace clrt

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "cl/launch_timing.hpp"
+#include "util/error.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -47,8 +48,9 @@ struct RowProgress {
   }
 };
 
+// Throws Cancelled once `cancel` asked for a stop (after the bands in flight).
 void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolicy& policy, int n_workers,
-                DeviceShare& share, RowProgress& progress, int range_rows) {
+                DeviceShare& share, RowProgress& progress, int range_rows, const CancelFn& cancel) {
   const int W = img.width, H = range_rows;
   const double limit = launch_limit_ms(policy, r.device().type);
   // Largest band the device can hold (float RGB output is the largest buffer).
@@ -59,12 +61,19 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
   // (before, a CPU frame was one launch: "0/600 rows" until it ended).
   // The few extra launches cost nothing against a frame that long; short
   // frames grow to one or two bands at once (4x per band).
+  // A caller that may stop the frame (cancel) gets the same bands: a stop
+  // waits for the bands in flight, so they must be short.
   constexpr double kProgressBandMs = 250;
-  const bool watched = static_cast<bool>(progress.fn);
+  const bool watched = static_cast<bool>(progress.fn) || static_cast<bool>(cancel);
+  // The time per band aimed at: 80% of the launch limit, or (no limit) 100
+  // ms with several devices, kProgressBandMs when watched; 0: none.
+  const double target = limit > 0 ? 0.8 * limit : n_workers > 1 ? 100.0 : watched ? kProgressBandMs : 0.0;
   int rows;
   if (policy.band_rows > 0)
     rows = policy.band_rows;
-  else if (limit > 0 || n_workers > 1 || watched)
+  else if (target > 0 && limit == 0 && r.ms_per_row() > 0)  // (never where a watchdog may kill a launch)
+    rows = int(std::max(1.0, std::min(std::floor(target / r.ms_per_row()), double(max_rows))));  // the last frame's rate
+  else if (target > 0)
     rows = std::min(16, max_rows);  // calibration band: measure before growing
   else
     rows = max_rows;  // one device, no limit: as few launches as memory allows
@@ -89,10 +98,8 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
     share.rows += n;
     progress.add(n, H);
     if (policy.band_rows > 0) return;
-    // Adapt: aim at 80% of the launch limit, or (no limit) 100 ms per band
-    // with several devices, growing at most 4x per step.
+    // Adapt to the target, growing at most 4x per step.
     const double per_row = std::max(ms, 1e-3) / n;
-    const double target = limit > 0 ? 0.8 * limit : n_workers > 1 ? 100.0 : watched ? kProgressBandMs : 0.0;
     if (target > 0) {
       double want = std::floor(target / per_row);
       rows = int(std::max(1.0, std::min({want, 4.0 * n, double(max_rows)})));
@@ -100,19 +107,22 @@ void run_worker(DeviceRenderer& r, BandQueue& queue, Image& img, const TilePolic
   };
   const auto t0 = Clock::now();
   int y0 = 0, n = 0;
-  while (queue.take(rows, policy.band_rows == 0, y0, n)) {
+  bool stopped = false;
+  while (!(stopped = cancel && cancel()) && queue.take(rows, policy.band_rows == 0, y0, n)) {
     r.submit_tile(0, y0, W, n, img);
     in_flight.push_back({n});
     while (int(in_flight.size()) >= r.tiles_in_flight()) finish_oldest();
   }
   while (!in_flight.empty()) finish_oldest();
   share.busy_ms = ms_since(t0);
+  if (share.rows > 0) r.set_ms_per_row(std::max(share.kernel_ms, 1e-3) / double(share.rows));  // (the next frame's)
+  if (stopped) throw Cancelled("render cancelled");
 }
 
 }  // namespace
 
 std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img, const TilePolicy& policy,
-                                      const ProgressFn& progress, int y_begin, int y_end) {
+                                      const ProgressFn& progress, int y_begin, int y_end, const CancelFn& cancel) {
   if (y_end < 0) y_end = img.height;
   if (y_begin < 0 || y_begin > y_end || y_end > img.height) throw std::logic_error("render_bands: rows out of range");
   const int range_rows = y_end - y_begin;
@@ -121,7 +131,7 @@ std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& worker
   for (size_t i = 0; i < workers.size(); ++i) shares[i].device = workers[i]->device().name;
   BandQueue queue(y_begin, y_end, int(workers.size()));
   if (workers.size() == 1) {
-    run_worker(*workers[0], queue, img, policy, 1, shares[0], rows, range_rows);
+    run_worker(*workers[0], queue, img, policy, 1, shares[0], rows, range_rows, cancel);
     return shares;
   }
   // One host thread per device: each owns its context, queue and program, and
@@ -131,7 +141,7 @@ std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& worker
   for (size_t i = 0; i < workers.size(); ++i) {
     threads.emplace_back([&, i] {
       try {
-        run_worker(*workers[i], queue, img, policy, int(workers.size()), shares[i], rows, range_rows);
+        run_worker(*workers[i], queue, img, policy, int(workers.size()), shares[i], rows, range_rows, cancel);
       } catch (...) {
         errors[i] = std::current_exception();
       }

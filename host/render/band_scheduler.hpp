@@ -55,9 +55,16 @@ class BandQueue {
 // (all workers must have been prepared with the same scene and size; y_end
 // < 0: to the last row). Returns one share per worker, in order. Exceptions
 // from any worker are rethrown. `progress` (optional): rows done of the
-// range, after each band.
+// range, after each band. `cancel` (optional): asked before each band is
+// taken; true: the bands in flight finish and Cancelled is thrown.
+//
+// Adaptive bands (band_rows 0) with a target time (a launch limit, several
+// devices, progress or cancel): a device's first band is 16 rows that
+// calibrate its time per row, or, without a launch limit, in a later frame
+// of the same prepare(), sized at once from its last frame's mean rate.
 std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& workers, Image& img, const TilePolicy& policy,
-                                      const ProgressFn& progress = {}, int y_begin = 0, int y_end = -1);
+                                      const ProgressFn& progress = {}, int y_begin = 0, int y_end = -1,
+                                      const CancelFn& cancel = {});
 
 // The effective launch limit of `policy` for a device of this type string.
 double launch_limit_ms(const TilePolicy& policy, const std::string& device_type);

@@ -133,7 +133,8 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
   if (cfg.denorms_zero) options.push_back("-cl-denorms-are-zero");
   if (cfg.precision == Precision::Fast) options.push_back("-cl-fast-relaxed-math");
   if (cfg.count_rays) options.push_back("-DCLRT_COUNT_RAYS");
-  // What the kernel stores per pixel: only what the caller reads.
+  // What the kernel stores per pixel: only what the caller reads (float
+  // colour for Float and Unit frames: Unit is scaled on the host).
   if (cfg.output.pixels == PixelFormat::Rgba8) options.push_back("-DCLRT_OUT_RGBA8");
   if (cfg.output.classes) options.push_back("-DCLRT_OUT_CLASSES");
   if (cfg.subsample != Subsample::Off)

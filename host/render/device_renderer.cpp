@@ -39,6 +39,7 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
 }
 
 void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth, Sampling sampling, const Bvh* bvh) {
+  ms_per_row_ = 0;  // another scene, size or depth: another rate
   if (requested_lanes_ == 0) {
     KernelConfig requested = config_;
     requested.lanes = 0;
@@ -312,6 +313,13 @@ void DeviceRenderer::store_tile(const PendingTile& tile, Image& dst) {
     else
       for (int ty = 0; ty < h; ++ty)
         std::memcpy(&dst.rgba8[(size_t(y0 + ty) * dst.width + x0) * 4], bytes + size_t(ty) * w * 4, size_t(w) * 4);
+  } else if (colour && config_.output.pixels == PixelFormat::Unit) {
+    const auto* rgb = static_cast<const float*>(colour);
+    for (int ty = 0; ty < h; ++ty) {
+      float* d = &dst.unit[(size_t(y0 + ty) * dst.width + x0) * 3];
+      const float* s = rgb + size_t(ty) * w * 3;
+      for (size_t i = 0; i < size_t(w) * 3; ++i) d[i] = to_unit(s[i]);
+    }
   } else if (colour) {
     const auto* rgb = static_cast<const float*>(colour);
     for (int ty = 0; ty < h; ++ty) {

@@ -87,6 +87,12 @@ class DeviceRenderer {
   // launches would count the overlap).
   int tiles_in_flight() const { return map_results_ || !overlap_ || !events_plausible_ ? 1 : 2; }
 
+  // The mean kernel time per row of this device's share of the last frame
+  // since prepare() (0: none yet), set by the band scheduler, which sizes a
+  // later frame's first band from it (band_scheduler.hpp).
+  double ms_per_row() const { return ms_per_row_; }
+  void set_ms_per_row(double ms) { ms_per_row_ = ms; }
+
   const DeviceTimings& timings() const { return timings_; }
   const RayCounts& ray_counts() const { return counts_; }
   const std::string& options() const { return options_; }
@@ -147,6 +153,7 @@ class DeviceRenderer {
   size_t max_work_group_ = 1;  // CL_KERNEL_WORK_GROUP_SIZE of the built kernel
   DeviceTimings timings_;
   RayCounts counts_;
+  double ms_per_row_ = 0;
 };
 
 }  // namespace clrt

@@ -111,7 +111,7 @@ void Renderer::render_rows(Image& img, int y_begin, int y_end) {
   // every pixel, so a reused image needs no clearing.
   const int width = devices_.front()->width(), height = devices_.front()->height();
   if (!img.holds(width, height, settings_.kernel.output)) img = Image(width, height, settings_.kernel.output);
-  stats_.shares = render_bands(workers, img, settings_.tiles, settings_.progress, y_begin, y_end);
+  stats_.shares = render_bands(workers, img, settings_.tiles, settings_.progress, y_begin, y_end, settings_.cancel);
   stats_.wall_ms = ms_since(t0);
   stats_.kernel_ms = stats_.download_ms = 0;
   stats_.launches = stats_.host_timed_launches = 0;

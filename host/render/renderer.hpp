@@ -32,6 +32,11 @@ struct RenderSettings {
   // render(): called with 0 rows done of the frame's height ("rows"), then
   // as bands finish, from the devices' threads; empty: none.
   ProgressFn progress{};
+  // render(): asked before each band is taken, from the devices' threads;
+  // once true, no more bands are taken, those in flight finish, and render()
+  // throws Cancelled (util/error.hpp). Set, bands are sized as for progress
+  // (about 250 ms each), so that a stop comes soon. Empty: never (the CLI).
+  CancelFn cancel{};
 };
 
 // The last prepare() and render(), over every device.
@@ -62,6 +67,8 @@ class Renderer {
   // value like the depth: another spp rebuilds nothing.
   void prepare(const Scene& scene, int width, int height, int depth, Sampling sampling = {});
   // Renders the prepared scene: the whole frame, shared by every device.
+  // Cancelled when settings.cancel asked for a stop (the image is then
+  // incomplete).
   Image render();
   // The same into `out`, whose memory is reused when it has the frame's size
   // (frame after frame: no new pages for the image).

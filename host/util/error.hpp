@@ -22,6 +22,12 @@ struct CheckFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A caller asked for the work to stop (RenderSettings::cancel: the Python
+// module's Ctrl-C); what was in flight finished first. The CLI never asks.
+struct Cancelled : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // Exit statuses, in one place (docs/guide/errors.md).
 constexpr int kExitOk = 0, kExitCheckFailed = 1, kExitBadInput = 2, kExitInternalError = 3;
 

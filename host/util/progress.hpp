@@ -16,6 +16,9 @@ namespace clrt {
 // Called with the steps done so far and the total; `what` names the step
 // about to run ("done" once done == total).
 using ProgressFn = std::function<void(int done, int total, const std::string& what)>;
+// Asked between steps whether to stop (true: stop; util/error.hpp's
+// Cancelled says so to the caller). Safe to call from several threads.
+using CancelFn = std::function<bool()>;
 
 // --quiet: no progress and no informational lines (errors and warnings stay).
 void set_quiet(bool quiet);

@@ -80,6 +80,7 @@ Image fill_image(Counter& c, int w, int h, FrameContents contents) {
   Image img(w, h, contents);
   for (auto& v : img.rgb) v = c.d();
   for (auto& v : img.rgba8) v = uint8_t(c.i());
+  for (auto& v : img.unit) v = float(c.d());
   for (auto& v : img.hit) v = c.i() - 40;
   for (auto& v : img.shadowed) v = c.i();
   return img;
@@ -91,6 +92,7 @@ void check_same(const Image& a, const Image& b) {
   CHECK(a.contents == b.contents);
   CHECK(a.rgb == b.rgb);
   CHECK(a.rgba8 == b.rgba8);
+  CHECK(a.unit == b.unit);
   CHECK(a.hit == b.hit);
   CHECK(a.shadowed == b.shadowed);
 }
@@ -264,7 +266,7 @@ TEST_CASE("images round-trip through bytes; malformed image messages are errors"
   Counter c;
   for (const FrameContents contents :
        {FrameContents{PixelFormat::Float, true}, FrameContents{PixelFormat::Rgba8, false},
-        FrameContents{PixelFormat::Rgba8, true}}) {
+        FrameContents{PixelFormat::Rgba8, true}, FrameContents{PixelFormat::Unit, false}}) {
     const Image img = fill_image(c, 5, 3, contents);
     check_same(dist::decode_image(dist::encode_image(img)), img);
   }

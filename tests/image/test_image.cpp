@@ -35,3 +35,29 @@ TEST_CASE("an image quantizes channel by channel", "[image]") {
   img.rgb = {0.5, 1.5, 300, -2, 127.49, 127.51};
   CHECK(to_u8(img) == std::vector<uint8_t>{0, 2, 255, 0, 127, 128});
 }
+
+TEST_CASE("the float files' scale keeps the canvas value of the kernel's float: every tie and beside it",
+          "[image]") {
+  // to_u8(from_unit(to_unit(c))) == to_u8(c) for every float c (checked once
+  // over every float in [0, 256]); here every half level, its neighbours and
+  // a sweep. The half levels themselves come back exactly.
+  std::vector<float> cs;
+  for (int k = -4; k <= 516; ++k) {
+    const float c = float(k) / 2;
+    cs.insert(cs.end(), {c, std::nextafter(c, -1e9f), std::nextafter(c, 1e9f)});
+  }
+  for (float c = 0; c < 256; c += 0.0137f) cs.push_back(c);
+  for (const float c : cs) {
+    INFO(c);
+    CHECK(to_u8(from_unit(to_unit(c))) == to_u8(c));
+    if (c >= 0 && c <= 256 && c * 2 == std::floor(c * 2)) CHECK(from_unit(to_unit(c)) == c);
+  }
+  CHECK(to_unit(255.0) == 1.0f);
+  CHECK(to_u8(from_unit(std::numeric_limits<float>::quiet_NaN())) == 0);
+  // A Unit image quantizes through from_unit.
+  Image img(2, 1, FrameContents{PixelFormat::Unit, false});
+  img.unit = {to_unit(0.5), to_unit(1.5), 2.0f, -1.0f, to_unit(127.49), to_unit(127.5)};
+  CHECK(img.holds(2, 1, FrameContents{PixelFormat::Unit, false}));
+  CHECK(img.rgb.empty());
+  CHECK(to_u8(img) == std::vector<uint8_t>{0, 2, 255, 0, 127, 128});
+}

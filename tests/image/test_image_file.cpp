@@ -14,6 +14,7 @@
 
 #include "cli_run.hpp"
 #include "image/image_file.hpp"
+#include "util/error.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -102,6 +103,22 @@ TEST_CASE("PFM is written by clrt itself: little-endian rows bottom to top", "[i
   CHECK(got.px[9] == Approx(0.2));
   // And OUT is checked like any other: a PFM needs no OpenImageIO encoder.
   CHECK_NOTHROW(clrt::check_output_format(dir / "y.pfm"));
+}
+
+TEST_CASE("image_bytes are the bytes write_image writes, and a Unit frame writes as its Float twin", "[image]") {
+  TempDir dir;
+  const clrt::Image img = sample_frame();
+  clrt::Image unit(4, 1, clrt::FrameContents{clrt::PixelFormat::Unit, false});
+  for (size_t i = 0; i < img.rgb.size(); ++i) unit.unit[i] = clrt::to_unit(img.rgb[i]);
+  const clrt::ImageMetadata meta{{"clrt:scene", "x.json"}};
+  for (const std::string ext : {"png", "ppm", "pfm", "exr"}) {
+    INFO("." << ext);
+    const std::string path = dir / ("f." + ext);
+    clrt::write_image(img, path, meta);
+    CHECK(clrt::image_bytes(img, ext, meta) == clrt_test::slurp(path));
+    CHECK(clrt::image_bytes(unit, "." + ext, meta) == clrt_test::slurp(path));
+  }
+  CHECK_THROWS_AS(clrt::image_bytes(img, "notaformat"), clrt::UserError);
 }
 
 TEST_CASE("older clrt float files (0..255, no clrt:white) still read as stored", "[image]") {

@@ -88,6 +88,18 @@ TEST_CASE("the module is found beside the running binary", "[imageio]") {
   CHECK(clrt::imageio::module_loaded());
 }
 
+TEST_CASE("a library's module is looked for relative to the library, never beside the executable", "[imageio]") {
+  // (The Python module: the executable is python3, whose folder is not clrt's.)
+  const std::string exe_dir = std::filesystem::read_symlink("/proc/self/exe").parent_path().string();
+  clrt::imageio::set_library_location("/opt/p/lib/python3.11/dist-packages/clrt", "../../../clrt");
+  CHECK(clrt::imageio::module_candidates() == std::vector<std::string>{"/opt/p/lib/clrt/clrt_imageio.so"});
+  // Inside the build folder (this binary's): the build folder's module only.
+  clrt::imageio::set_library_location(exe_dir + "/python/clrt", "../../../clrt");
+  CHECK(clrt::imageio::module_candidates() == std::vector<std::string>{exe_dir + "/clrt_imageio.so"});
+  clrt::imageio::set_library_location("", "");  // (back to the executable's places)
+  CHECK(clrt::imageio::module_candidates().front() == exe_dir + "/clrt_imageio.so");
+}
+
 TEST_CASE("every format checked without OpenImageIO is one it writes", "[imageio]") {
   clrt::imageio::Module& io = clrt::imageio::module();
   for (const auto& ext : clrt::written_without_asking()) {

@@ -2,12 +2,14 @@
 // (render/build_options.hpp's KernelConfig::output): its 8-bit RGBA must be
 // exactly the host's canvas conversion (to_u8) of its float colour, and
 // leaving out the classification must not change the colour.
+#include <atomic>
 #include <catch2/catch.hpp>
 #include <tuple>
 
 #include "image/image.hpp"
 #include "render/precision.hpp"
 #include "render/renderer.hpp"
+#include "util/error.hpp"
 #include "test_util.hpp"
 
 using namespace clrt;
@@ -139,6 +141,60 @@ TEST_CASE("8-bit frames: mapped and read, in bands, fresh and reused: the same b
     CHECK(reused.rgba8 == got_read.rgba8);
     CHECK(to_u8(reused) == to_u8(want));
   }
+}
+
+TEST_CASE("Unit frames hold the float frame's colour on the float files' scale, mapped and read",
+          "[opencl][output]") {
+  const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
+  const Image want = render_as(demo, 70, 45, 3, KernelConfig{}, kFloatOnly);
+  for (const bool map_results : {true, false}) {
+    INFO((map_results ? "mapped" : "read"));
+    const Image got =
+        render_as(demo, 70, 45, 3, KernelConfig{}, {PixelFormat::Unit, false}, TilePolicy{0, 8}, map_results);
+    REQUIRE(got.unit.size() == want.rgb.size());
+    CHECK(got.rgb.empty());
+    bool same = true;
+    for (size_t i = 0; i < want.rgb.size(); ++i) same = same && got.unit[i] == to_unit(want.rgb[i]);
+    CHECK(same);
+    CHECK(to_u8(got) == to_u8(want));
+  }
+}
+
+TEST_CASE("a cancel function stops a frame between bands, and the renderer renders again", "[opencl][output]") {
+  const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
+  KernelConfig cfg;
+  cfg.output = kFloatOnly;
+  std::atomic<int> asked{0};
+  RenderSettings settings{cfg, TilePolicy{0, 4}, {}};  // bands of 4 rows: 15 of them
+  settings.cancel = [&asked] { return ++asked > 3; };  // stop before the fourth band
+  Renderer r({clrt_test::test_device()}, settings);
+  r.prepare(demo, 48, 60, 3);
+  Image img;
+  CHECK_THROWS_AS(r.render_into(img), Cancelled);
+  CHECK(asked == 4);
+  CHECK(r.stats().launches == 0);  // (the stats of a frame are those of the last whole one)
+  asked = -1000;  // (no stop now)
+  r.render_into(img);
+  CHECK(r.stats().launches == 15);
+  CHECK(img.rgb == render_as(demo, 48, 60, 3, KernelConfig{}, kFloatOnly).rgb);
+}
+
+TEST_CASE("a warm frame's first band is sized from the last frame's rate, where no launch limit binds",
+          "[opencl][output]") {
+  const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
+  KernelConfig cfg;
+  cfg.output = kFloatOnly;
+  RenderSettings settings{cfg, TilePolicy{0, 0}, {}};
+  settings.cancel = [] { return false; };  // a frame that may be stopped: bands of about 250 ms
+  Renderer r({clrt_test::test_device()}, settings);
+  r.prepare(demo, 64, 64, 1);
+  r.render();
+  CHECK(r.stats().launches >= 2);  // the 16-row calibration band first
+  r.render();
+  CHECK(r.stats().launches == 1);  // 64 rows take far less than 250 ms
+  r.prepare(demo, 64, 64, 1);      // (another prepare: measured again)
+  r.render();
+  CHECK(r.stats().launches >= 2);
 }
 
 TEST_CASE("Image holds exactly the buffers of its contents", "[output]") {
