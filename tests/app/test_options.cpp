@@ -8,7 +8,7 @@
 
 using namespace clrt;
 
-TEST_CASE("local sizes WxH parse; anything else is bad input", "[options]") {
+TEST_CASE("local sizes WxH parse, anything else is bad input", "[options]") {
   CHECK(parse_local_size("").x == 0);
   CHECK(parse_local_size("").y == 0);
   const LocalSize s = parse_local_size("8x4");

@@ -63,7 +63,7 @@ TEST_CASE("accuracy plot: one marker per scene", "[plot][accuracy]") {
   CHECK(markers[0] != markers[1]);
 }
 
-TEST_CASE("sweep plot: two devices of one name are two series; error per depth plotted", "[plot][sweep]") {
+TEST_CASE("sweep plot: two devices of one name are two series, error per depth plotted", "[plot][sweep]") {
   std::vector<SweepRow> rows;
   for (int device : {0, 1})
     for (int depth : {0, 1, 2}) {

@@ -151,7 +151,7 @@ TEST_CASE("CsvTable quotes every field and keeps rows in the header's columns", 
   CHECK(clrt::csv_record({"x", "y,z"}) == "x,\"y,z\"\n");
 }
 
-TEST_CASE("one name per comparison metric, with its unit, in JSON and CSV; infinite PSNR is null",
+TEST_CASE("one name per comparison metric, with its unit, in JSON and CSV, infinite PSNR is null",
           "[compare][output]") {
   clrt::Comparison c;
   c.pixels = 100;

@@ -104,7 +104,7 @@ TEST_CASE("a frame farmed over the ranks is bit-identical to one process's", "[d
   }
 }
 
-TEST_CASE("a rank that fails ends every rank; rank 0 names it", "[dist][mpi][opencl]") {
+TEST_CASE("a rank that fails ends every rank, rank 0 names it", "[dist][mpi][opencl]") {
   Communicator& comm = world();
   const Scene scene = builtin_demo_scene();
   // Each rank in turn fails to prepare (a bad device on that rank, say).

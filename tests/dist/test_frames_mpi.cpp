@@ -227,7 +227,7 @@ TEST_CASE("frames farmed over the ranks: each delivered once, the pixels of one 
   }
 }
 
-TEST_CASE("a rank that fails at a frame ends every rank; rank 0 names it and the frame",
+TEST_CASE("a rank that fails at a frame ends every rank, rank 0 names it and the frame",
           "[frames][dist][mpi][opencl]") {
   clrt::dist::Communicator& comm = clrt::dist::world();
   const std::vector<clrt::Scene> scenes = eight_scenes();

@@ -262,7 +262,7 @@ TEST_CASE("accuracy rows round-trip through bytes, every field", "[dist][grid][a
   }
 }
 
-TEST_CASE("images round-trip through bytes; malformed image messages are errors", "[dist][grid]") {
+TEST_CASE("images round-trip through bytes, malformed image messages are errors", "[dist][grid]") {
   Counter c;
   for (const FrameContents contents :
        {FrameContents{PixelFormat::Float, true}, FrameContents{PixelFormat::Rgba8, false},

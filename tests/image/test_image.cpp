@@ -20,7 +20,7 @@ TEST_CASE("8-bit values round to nearest, ties to even, like a canvas", "[image]
   CHECK(to_u8(std::nextafter(2.5, 2.0)) == 2);
 }
 
-TEST_CASE("8-bit values clamp to [0, 255]; NaN becomes 0", "[image]") {
+TEST_CASE("8-bit values clamp to [0, 255], NaN becomes 0", "[image]") {
   CHECK(to_u8(-1e30) == 0);
   CHECK(to_u8(-0.0) == 0);
   CHECK(to_u8(255.4) == 255);

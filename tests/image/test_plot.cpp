@@ -92,7 +92,7 @@ TEST_CASE("a plot with an unknown extension is refused before drawing", "[plot]"
   CHECK_THROWS_AS(check_plot_output((dir / "no/such/dir/p.png").string()), UserError);
 }
 
-TEST_CASE("a name has one colour whatever else is plotted; markers differ", "[plot]") {
+TEST_CASE("a name has one colour whatever else is plotted, markers differ", "[plot]") {
   // The accuracy variants each have their own fixed colour.
   const std::vector<std::string> variants{
       "naive", "stable", "robust", "fast", "fp64", "robust+subsample-shade", "robust+subsample-interpolate"};

@@ -90,7 +90,7 @@ TEST_CASE("pack_scene: counts, sizes, materials and light codes", "[buffers]") {
   CHECK(d.lights[1].intensity == 0.6f);
 }
 
-TEST_CASE("robust and fast are camera-relative; positions move, directions do not", "[buffers]") {
+TEST_CASE("robust and fast are camera-relative, positions move, directions do not", "[buffers]") {
   CHECK(camera_relative(Precision::Robust));
   CHECK(camera_relative(Precision::Fast));
   CHECK_FALSE(camera_relative(Precision::Naive));

@@ -30,7 +30,7 @@ TEST_CASE("random scenes: N spheres plus the floor, the same for the same seed",
   CHECK(scene_to_json(back) == scene_to_json(a));
 }
 
-TEST_CASE("clrt generate writes a scene clrt reads; bad counts are bad input", "[cli][generate]") {
+TEST_CASE("clrt generate writes a scene clrt reads, bad counts are bad input", "[cli][generate]") {
   clrt_test::TempDir dir;
   auto r = clrt_test::run_clrt({"generate", "--spheres", "50", "--seed", "3", "-o", dir / "g.json"});
   INFO(r.err);
