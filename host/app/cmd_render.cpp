@@ -179,6 +179,7 @@ void add_render_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "render", "Render a scene to an image (png, ppm, exr, ...), or several scenes to numbered frames");
   o->add(cmd, /*with_engine=*/true, /*several_scenes=*/true);
+  o->image.add_ray_cut_flag(cmd);
   cmd->add_option("-o,--output", *out,
                   "Output image; the extension picks the format ('-' = PNG on standard output, as are devices and "
                   "FIFOs named without an extension). A run of '#' in its file name is the frame number, "
