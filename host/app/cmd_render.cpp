@@ -34,7 +34,8 @@ namespace {
 // output and reads the scene, every rank gets it (no shared file system is
 // assumed), the frame is farmed out in tiles (dist/frame_farm.hpp), and rank
 // 0 writes it.
-void render_across_ranks(const RenderOptions& o, const std::string& out, const std::string& format, int tile_rows) {
+void render_across_ranks(const RenderOptions& o, const std::string& out, const std::string& format, int tile_rows,
+                         int test_stall_rank) {
   dist::Communicator& comm = dist::world();
   OutputTarget target;
   const Scene scene = dist::share_scene(comm, [&] {
@@ -54,10 +55,12 @@ void render_across_ranks(const RenderOptions& o, const std::string& out, const s
   dist::FarmSettings farm;
   farm.width = o.image.width, farm.height = o.image.height, farm.contents = settings.kernel.output;
   farm.tile_rows = tile_rows;
+  farm.test_stall_rank = test_stall_rank;
   farm.progress = stderr_progress();
   dist::FarmStats stats;
   Image img = dist::farm_frame(comm, prepare, farm, &stats);
   if (comm.rank() != 0) return;
+  dist::stop_if_orphaned();  // a job that was ended writes nothing
   const std::string device = std::to_string(comm.size()) + " MPI ranks (rank 0: " + stats.ranks[0].devices + ")";
   write_image(img, out, image_metadata("clrt render", o, depth, o.engine, device), format);
   std::FILE* report = target.kind == OutputKind::File ? stdout : stderr;
@@ -139,6 +142,7 @@ void render_frames(const RenderOptions& o, const std::vector<std::string>& paths
     const int depth = depths[i];
     frame_options.scene_path = o.scene_paths[i];
     const std::string device = across ? dist::rank_label(run.rank, run.host) + ": " + run.devices : run.devices;
+    dist::stop_if_orphaned();  // a job that was ended writes nothing
     write_image(img, paths[i], image_metadata("clrt render", frame_options, depth, o.engine, device), format);
     frame_ms.push_back(run.ms);
     clear_progress_line();
@@ -176,6 +180,7 @@ void add_render_command(CLI::App& app) {
   auto out = std::make_shared<std::string>();
   auto format = std::make_shared<std::string>();
   auto tile_rows = std::make_shared<int>(0);
+  auto stall_rank = std::make_shared<int>(-1);
   auto* cmd = app.add_subcommand(
       "render", "Render a scene to an image (png, ppm, exr, ...), or several scenes to numbered frames");
   o->add(cmd, /*with_engine=*/true, /*several_scenes=*/true);
@@ -194,14 +199,18 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::Range(0, kMaxImageEdge))
       ->capture_default_str()
       ->group(kDeveloperGroup);
-  cmd->callback([o, out, format, tile_rows] {
+  add_mpi_timeout_option(cmd);
+  // A test hook, not in the help (an empty group): rank R stops taking part
+  // in MPI in the middle of its first rows message (dist::FarmSettings).
+  cmd->add_option("--mpi-test-stall", *stall_rank, "")->check(CLI::Range(1, 1 << 20))->group("");
+  cmd->callback([o, out, format, tile_rows, stall_rank] {
     o->validate();
     // One name per frame (a pattern's run of '#' is replaced, for one scene too).
     const std::vector<std::string> paths = frame_paths(*out, int(o->scene_paths.size()));
     if (paths.size() > 1) return render_frames(*o, paths, *format);
     o->scene_path = o->scene_paths.at(0);
     const std::string& path = paths[0];
-    if (dist::world().distributed()) return render_across_ranks(*o, path, *format, *tile_rows);
+    if (dist::world().distributed()) return render_across_ranks(*o, path, *format, *tile_rows, *stall_rank);
     const OutputTarget target = check_output_format(path, *format);  // fail before rendering
     Scene scene = o->image.load_scene(o->scene_path);
     int depth = o->image.effective_depth(scene);

@@ -116,6 +116,7 @@ void add_sweep_command(CLI::App& app) {
   auto as_json = std::make_shared<bool>(false);
   auto* cmd = app.add_subcommand("sweep", "Bench figures and error vs reference per recursion depth (and device)");
   o->add(cmd, /*with_engine=*/false);
+  add_mpi_timeout_option(cmd);
   cmd->add_option("--depths", *depths, "Depth range A:B, inclusive")->capture_default_str();
   cmd->add_option("--devices", *devices,
                   "Devices: index, P:D, list (0,1), 'all', or name substring; unset: those of --device");

@@ -137,6 +137,8 @@ void add_quiet_flag(CLI::App* cmd) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A rank whose mpirun is gone stops at once (dist/communicator.hpp).
+  clrt::dist::watch_launcher();
   // Named "clrt" whatever the path it runs from (usage lines, the man page).
   CLI::App app{"clrt - OpenCL Whitted ray tracer (Computer Graphics from Scratch, ch. 2-5) with a double reference",
                "clrt"};

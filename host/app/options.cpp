@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "clrt_layout.h"
+#include "dist/communicator.hpp"
 #include "render/precision.hpp"
 #include "scene/ray_tree.hpp"
 #include "scene/scene_json.hpp"
@@ -212,6 +213,17 @@ void parse_depth_range(const std::string& s, int& from, int& to) {
   }
   if (from < 0 || to < from || to > CLRT_MAX_DEPTH)
     throw UserError("--depths: need 0 <= A <= B <= " + std::to_string(CLRT_MAX_DEPTH) + " (got \"" + s + "\")");
+}
+
+void add_mpi_timeout_option(CLI::App* cmd) {
+  cmd->add_option_function<double>(
+         "--mpi-timeout", [](double seconds) { dist::set_silence_bound_s(seconds); },
+         "Under mpirun: end the job, naming the rank and its host, when a rank that owes rank 0 a message has sent "
+         "none for this many seconds (a rank at work sends a heartbeat every quarter of it, at most every 5 s; "
+         "docs/distributed.md)")
+      ->check(CLI::Range(0.1, 1e6))
+      ->default_str(std::to_string(int(dist::kDefaultSilenceBoundS)))
+      ->group(kDeveloperGroup);
 }
 
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help) {

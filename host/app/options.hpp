@@ -114,6 +114,11 @@ struct LaunchOptions {
   LocalSize local() const;
 };
 
+// --mpi-timeout SECONDS (render, sweep, accuracy: the commands that run
+// across MPI ranks): how long rank 0 waits for a rank that owes it a message
+// (dist::silence_bound_s()).
+void add_mpi_timeout_option(CLI::App* cmd);
+
 // --repeat N: timed runs, in [1, kMaxRepeat].
 constexpr int kMaxRepeat = 1000;
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help);

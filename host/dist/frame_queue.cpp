@@ -103,7 +103,8 @@ void work(Communicator& comm, const FrameQueueSettings& settings, const RenderFr
       const Scene scene = decode_scene(get_bytes(in));
       FrameRun run;
       run.index = index, run.rank = comm.rank(), run.host = share.host;
-      const Image img = render_frame(render, scene, run, settings, /*check=*/true);
+      Image img;
+      keep_alive(comm, [&] { img = render_frame(render, scene, run, settings, /*check=*/true); });
       add_frame(share, run, settings.height);
       for (int y0 = 0; y0 < settings.height; y0 += band) {
         Writer w;
@@ -223,6 +224,7 @@ void master(Communicator& comm, size_t count, const SceneSource& scenes, const F
   if (settings.progress) settings.progress(0, frames, "frames");
   auto pause = std::chrono::microseconds(20);
   const auto failed = [&] { return !remote_failure.empty() || own_failure || (local_done && local_failure); };
+  Liveness live(comm);
   while ((frames_done < frames || waiting > 0) && !failed()) {
     try {
       std::vector<Finished> mine;
@@ -234,11 +236,16 @@ void master(Communicator& comm, size_t count, const SceneSource& scenes, const F
       if (!mine.empty()) continue;
       Message m;
       if (!comm.try_receive(m)) {
+        const std::string silent = live.silent([&](int r) { return !reported[size_t(r)]; });
+        if (!silent.empty())
+          fail_silent(comm, silent + "; " + std::to_string(frames_done) + " of " + std::to_string(frames) +
+                                " frames were done");
         std::this_thread::sleep_for(pause);
         pause = std::min(pause * 2, std::chrono::microseconds(1000));
         continue;
       }
       pause = std::chrono::microseconds(20);
+      live.heard(m.source);
       if (m.tag == kTagResult) {
         Reader in(m.data);
         const FrameRun run = get_run(in, m.source);
