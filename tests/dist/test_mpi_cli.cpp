@@ -261,3 +261,24 @@ TEST_CASE("mpirun killed mid-frame: no rank outlives it, nothing is written", "[
   for (int pid : left) ::kill(pid, SIGKILL);
   CHECK(dir.entries().empty());  // neither the image nor its temp file
 }
+
+TEST_CASE("mpirun clrt cache warm: every rank warms its node's cache, rank 0 reports", "[mpi-cli][cache][opencl]") {
+  SKIP_WITHOUT_MPI();
+  TempDir dir;
+  // (Both ranks run here, so they share one cache: the second finds the
+  // entry the first stored, or stores the same one; either is a warm cache.)
+  const std::string env = "CLRT_CACHE_DIR=" + shell_quote(dir / "cache") + " ";
+  const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json");
+  const RunResult job = run_command_line(
+      env + clrt_test::mpirun_prefix(2) +
+      clrt_test::clrt_command({"cache", "warm", scene, "--width", "64", "--height", "48", "--aspect", "image"}));
+  INFO(job.out << job.err);
+  CHECK(job.status == 0);
+  CHECK(lines_starting(job.out, "rank 0 (") == 1);
+  CHECK(lines_starting(job.out, "rank 1 (") == 1);
+  const RunResult render = clrt_test::run_clrt({"render", scene, "-o", dir / clrt_test::image_name("x"), "--width",
+                                                "64", "--height", "48", "--aspect", "image", "--verbose"},
+                                               env.substr(0, env.size() - 1));
+  INFO(render.err);
+  CHECK_THAT(render.err, Catch::Contains("program loaded from cache"));
+}
