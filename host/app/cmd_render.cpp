@@ -79,7 +79,8 @@ void render_across_ranks(const RenderOptions& o, const std::string& out, const s
 // rebuilds nothing); each frame is written, atomically, as it is done, so a
 // failure leaves the frames written before it, complete, and no partial
 // file. Under mpirun whole frames are farmed out to the ranks
-// (dist/frame_queue.hpp) and rank 0 writes them.
+// (dist/frame_queue.hpp); each rank encodes the frames it renders and rank 0
+// writes their bytes.
 void render_frames(const RenderOptions& o, const std::vector<std::string>& paths, const std::string& format) {
   const auto t0 = Clock::now();
   dist::Communicator& comm = dist::world();
@@ -134,16 +135,27 @@ void render_frames(const RenderOptions& o, const std::vector<std::string>& paths
     return img;
   };
 
+  // Each frame is encoded where it was rendered (under mpirun, on every rank
+  // at once: rank 0 only writes the bytes), with its metadata.
+  const auto device_of = [&](const dist::FrameRun& run) {
+    return across ? dist::rank_label(run.rank, run.host) + ": " + run.devices : run.devices;
+  };
+  const dist::EncodeFrameFn encode = [&](const Image& img, const Scene& scene, const dist::FrameRun& run) {
+    const size_t i = size_t(run.index);
+    RenderOptions frame_options = o;  // scene_path: the frame's, for its metadata
+    frame_options.scene_path = o.scene_paths[i];
+    const ImageMetadata metadata =
+        image_metadata("clrt render", frame_options, o.image.effective_depth(scene), o.engine, device_of(run));
+    return encode_image(img, paths[i], metadata, format);
+  };
   // Rank 0: each frame written, and its line, as it arrives.
-  RenderOptions frame_options = o;  // scene_path: the frame's, for its metadata
   std::vector<double> frame_ms;
-  const dist::FrameDoneFn done = [&](const Image& img, const dist::FrameRun& run) {
+  const dist::FileDoneFn done = [&](const std::string& file, const dist::FrameRun& run) {
     const size_t i = size_t(run.index);
     const int depth = depths[i];
-    frame_options.scene_path = o.scene_paths[i];
-    const std::string device = across ? dist::rank_label(run.rank, run.host) + ": " + run.devices : run.devices;
+    const std::string device = device_of(run);
     dist::stop_if_orphaned();  // a job that was ended writes nothing
-    write_image(img, paths[i], image_metadata("clrt render", frame_options, depth, o.engine, device), format);
+    write_output(paths[i], file);
     frame_ms.push_back(run.ms);
     clear_progress_line();
     if (o.engine == "opencl")
@@ -158,11 +170,13 @@ void render_frames(const RenderOptions& o, const std::vector<std::string>& paths
   dist::FrameQueueSettings queue;
   queue.width = o.image.width, queue.height = o.image.height, queue.contents = settings.kernel.output;
   queue.progress = stderr_progress();
+  queue.encode = encode;
+  queue.file_done = done;
   dist::FrameQueueStats stats;
   const dist::SceneSource scenes = [&](size_t i) {
     return held[i] ? held[i] : std::make_shared<const Scene>(o.image.load_scene(o.scene_paths[i], /*warn=*/false));
   };
-  dist::farm_frames(comm, o.scene_paths.size(), scenes, queue, render, done, &stats);
+  dist::farm_frames(comm, o.scene_paths.size(), scenes, queue, render, /*done=*/nullptr, &stats);
   if (comm.rank() != 0) return;
   clear_progress_line();
   const std::string where = across ? " on " + std::to_string(comm.size()) + " MPI ranks" : "";

@@ -156,27 +156,50 @@ std::string encode(const std::string& path, const std::string& name, int w, int 
   return scratch.read();
 }
 
-// (Callers checked OUT before the work with check_output_format();
-// write_output() meets any change since.)
-void write_pixels(const std::string& path, const std::string& format, int w, int h, imageio::PixelType type,
-                  const void* data, const ImageMetadata& metadata) {
-  const OutputKind kind = resolve_output(path).kind;
+// The bytes of the file `path` (of `kind`) in `format` holding `pixels`.
+std::string encode_pixels(const std::string& path, OutputKind kind, const std::string& format, int w, int h,
+                          imageio::PixelType type, const void* data, const ImageMetadata& metadata) {
   check_image_format(path, kind, format);
   const std::string name = format_name(path, kind, format);
   const std::string ext = lowercase_extension(name);
-  std::string bytes;
   if (ext == "pfm") {
     const size_t n = size_t(w) * h * 3;
     std::vector<float> f(n);
     for (size_t i = 0; i < n; ++i)  // (8-bit data, a --diff image: 255 = 1.0)
       f[i] = type == imageio::PixelType::Float ? static_cast<const float*>(data)[i]
                                                : float(static_cast<const uint8_t*>(data)[i] / 255.0);
-    bytes = encode_pfm(w, h, f);
-  } else {
-    bytes = encode(path, name, w, h, type, data, metadata);
-    if (comment_header_ext(ext)) bytes = with_header_comments(std::move(bytes), metadata);
+    return encode_pfm(w, h, f);
   }
-  write_output(path, bytes);
+  std::string bytes = encode(path, name, w, h, type, data, metadata);
+  if (comment_header_ext(ext)) bytes = with_header_comments(std::move(bytes), metadata);
+  return bytes;
+}
+
+// (Callers checked OUT before the work with check_output_format();
+// write_output() meets any change since.)
+void write_pixels(const std::string& path, const std::string& format, int w, int h, imageio::PixelType type,
+                  const void* data, const ImageMetadata& metadata) {
+  write_output(path, encode_pixels(path, resolve_output(path).kind, format, w, h, type, data, metadata));
+}
+
+// An image's file bytes (write_image(), encode_image()).
+std::string image_bytes(const Image& img, const std::string& path, OutputKind kind, const ImageMetadata& metadata,
+                        const std::string& format_in) {
+  const std::string format = format_arg(format_in);
+  const bool floating = output_pixel_format(path, format) == PixelFormat::Float;
+  // The colour tags come first; the caller's metadata cannot replace them.
+  ImageMetadata meta{{"oiio:ColorSpace", "sRGB"}, {kWhiteKey, floating ? "1" : "255"}};
+  for (const auto& kv : metadata)
+    if (kv.first != "oiio:ColorSpace" && kv.first != kWhiteKey) meta.push_back({kv.first, one_line(kv.second)});
+  if (floating) {
+    if (img.contents.pixels != PixelFormat::Float)
+      throw std::logic_error("write_image: " + path + " needs float colour, the frame holds 8-bit");
+    std::vector<float> f(img.rgb.size());
+    for (size_t i = 0; i < f.size(); ++i) f[i] = float(img.rgb[i] * (kFloatWhite / 255.0));
+    return encode_pixels(path, kind, format, img.width, img.height, imageio::PixelType::Float, f.data(), meta);
+  }
+  auto u8 = to_u8(img);
+  return encode_pixels(path, kind, format, img.width, img.height, imageio::PixelType::UInt8, u8.data(), meta);
 }
 
 // The "# key=value" comment lines of a PPM or HDR header (read_metadata).
@@ -223,24 +246,13 @@ PixelFormat output_pixel_format(const std::string& path, const std::string& form
   return is_float_ext(format_ext(path, kind, format_arg(format))) ? PixelFormat::Float : PixelFormat::Rgba8;
 }
 
-void write_image(const Image& img, const std::string& path, const ImageMetadata& metadata,
-                 const std::string& format_in) {
-  const std::string format = format_arg(format_in);
-  const bool floating = output_pixel_format(path, format) == PixelFormat::Float;
-  // The colour tags come first; the caller's metadata cannot replace them.
-  ImageMetadata meta{{"oiio:ColorSpace", "sRGB"}, {kWhiteKey, floating ? "1" : "255"}};
-  for (const auto& kv : metadata)
-    if (kv.first != "oiio:ColorSpace" && kv.first != kWhiteKey) meta.push_back({kv.first, one_line(kv.second)});
-  if (floating) {
-    if (img.contents.pixels != PixelFormat::Float)
-      throw std::logic_error("write_image: " + path + " needs float colour, the frame holds 8-bit");
-    std::vector<float> f(img.rgb.size());
-    for (size_t i = 0; i < f.size(); ++i) f[i] = float(img.rgb[i] * (kFloatWhite / 255.0));
-    write_pixels(path, format, img.width, img.height, imageio::PixelType::Float, f.data(), meta);
-  } else {
-    auto u8 = to_u8(img);
-    write_pixels(path, format, img.width, img.height, imageio::PixelType::UInt8, u8.data(), meta);
-  }
+void write_image(const Image& img, const std::string& path, const ImageMetadata& metadata, const std::string& format) {
+  write_output(path, image_bytes(img, path, resolve_output(path).kind, metadata, format));
+}
+
+std::string encode_image(const Image& img, const std::string& path, const ImageMetadata& metadata,
+                         const std::string& format) {
+  return image_bytes(img, path, OutputKind::File, metadata, format);
 }
 
 ImageMetadata read_metadata(const std::string& path, const std::vector<std::string>& keys) {
