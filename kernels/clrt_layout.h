@@ -98,7 +98,11 @@ typedef struct clrt_params {
   clrt_i32 n_triangles;
   clrt_i32 adaptive;            /* adaptive supersampling (scene/sampling.hpp): 1 = on */
   clrt_f32 adaptive_threshold;  /* its T, in 8-bit levels */
-} clrt_params; /* 184 bytes */
+  /* The ray tree's weight cut-off (host/scene/ray_tree.hpp): a child ray
+   * whose weight (the product of the shares along its path) is below it is
+   * not traced; 0 = every ray down to the depth. */
+  clrt_f32 min_weight;
+} clrt_params; /* 188 bytes */
 
 /* The material of a plane or triangle (spheres carry theirs inline). */
 typedef struct clrt_material {
@@ -215,6 +219,7 @@ typedef struct clrt_bvh_node {
   FIELD(clrt_params, n_triangles)      \
   FIELD(clrt_params, adaptive)         \
   FIELD(clrt_params, adaptive_threshold) \
+  FIELD(clrt_params, min_weight)       \
   FIELD(clrt_material, color)          \
   FIELD(clrt_material, specular)       \
   FIELD(clrt_material, reflective)     \

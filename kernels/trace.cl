@@ -48,8 +48,10 @@ CLRT_INLINE vec3 camera_direction(const lreal dx, const lreal dy, const real* m,
  * r to its reflected child and (1 - r) t to its refracted one (all of it to
  * the reflected child under total internal reflection); a ray that ends
  * (depth reached, or neither share) adds its whole local colour, a miss the
- * background. With reflection only, every ray has at most one child and no
- * stack is needed. With transparency (CLRT_HAS_TRANSPARENT) a hit can have
+ * background. A child whose weight is below clrt_params.min_weight is not
+ * traced (the host's cut-off, host/scene/ray_tree.hpp: what it could add
+ * cannot move the pixel by a level). With reflection only, every ray has at
+ * most one child and no stack is needed. With transparency (CLRT_HAS_TRANSPARENT) a hit can have
  * two children: the reflected one continues and the refracted one waits in
  * the slot of its level, a bounded tree walk in depth-first order. All
  * lanes walk the same tree positions (lanes without a ray there are masked),
@@ -72,6 +74,9 @@ CLRT_INLINE vec3 trace_camera_ray(const lreal dx, const lreal dy, const real* m,
   lint self = -1;         /* sphere the lane's current ray starts on */
   lint alive = active;    /* lanes whose current ray exists */
   int level = 0;          /* of the current rays (0: camera rays), the same for all lanes */
+#if CLRT_HAS_REFLECTIVE || CLRT_HAS_TRANSPARENT
+  const real min_weight = scene->params->min_weight; /* children lighter than this are not traced */
+#endif
 #if CLRT_HAS_TRANSPARENT
   lreal medium = scene->params->camera_medium; /* refractive index the current ray travels in */
   vec3 pending_origin[CLRT_STACK_FRAMES], pending_direction[CLRT_STACK_FRAMES];
@@ -131,10 +136,19 @@ CLRT_INLINE vec3 trace_camera_ray(const lreal dx, const lreal dy, const real* m,
 #endif
       result = vsel(alive, vadd(result, vscale(stop ? weight : weight * local_share, local_color)), result);
       alive &= !stop;
+      /* The weight cut-off (clrt_params.min_weight): a child lighter than it
+       * is not traced; a ray whose children are all cut ends here, having
+       * added only its local share (the reference does the same). */
+#if CLRT_HAS_TRANSPARENT
+      const lint reflects = alive & (reflected_share > 0) & (weight * reflected_share >= min_weight);
+      const lint refracts = alive & (refracted_share > 0) & (weight * refracted_share >= min_weight);
+      alive = reflects | refracts;
+#else
+      alive &= weight * reflected_share >= min_weight;
+#endif
       if (ANY(alive)) {
         const vec3 R = reflect_ray(V, N);
 #if CLRT_HAS_TRANSPARENT
-        const lint reflects = alive & (reflected_share > 0), refracts = alive & (refracted_share > 0);
         /* Where both exist the refracted child waits; slot level + 1 is
          * empty in every lane (see above). */
         pending[level + 1] = reflects & refracts;

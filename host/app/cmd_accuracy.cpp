@@ -80,6 +80,8 @@ void add_accuracy_command(CLI::App& app) {
       "Kernel time (median of --repeat after a warm-up) against error vs the reference, per variant x scene");
   cmd->add_option("scenes", o->scenes, "Scene files (JSON)")->required()->expected(1, -1);
   o->image.add(cmd, /*with_depth=*/true, /*with_spp=*/true, /*with_subsample=*/false);  // a variant here
+  o->image.add_ray_budget(cmd);
+  add_mpi_timeout_option(cmd);
   o->device.add(cmd, /*several=*/false);
   o->kernel.add(cmd, /*with_variant=*/false);
   add_repeat_option(cmd, o->repeat, "Timed kernel runs per variant after one warm-up");

@@ -29,6 +29,7 @@ void add_compare_command(CLI::App& app) {
   auto limits = std::make_shared<Thresholds>();
   auto* cmd = app.add_subcommand("compare", "Render with both engines and report the error of OpenCL vs reference");
   o->add(cmd, /*with_engine=*/false);
+  o->image.add_ray_cut_flag(cmd);
   cmd->add_option("--diff", *diff, "Write a difference image (x16; magenta = hit flips, cyan = shadow flips)");
   cmd->add_option("--image", *image,
                   "Compare this image file (e.g. written by clrt render) instead of rendering with OpenCL; its size "

@@ -34,7 +34,8 @@ namespace {
 // output and reads the scene, every rank gets it (no shared file system is
 // assumed), the frame is farmed out in tiles (dist/frame_farm.hpp), and rank
 // 0 writes it.
-void render_across_ranks(const RenderOptions& o, const std::string& out, const std::string& format, int tile_rows) {
+void render_across_ranks(const RenderOptions& o, const std::string& out, const std::string& format, int tile_rows,
+                         int test_stall_rank) {
   dist::Communicator& comm = dist::world();
   OutputTarget target;
   const Scene scene = dist::share_scene(comm, [&] {
@@ -54,10 +55,12 @@ void render_across_ranks(const RenderOptions& o, const std::string& out, const s
   dist::FarmSettings farm;
   farm.width = o.image.width, farm.height = o.image.height, farm.contents = settings.kernel.output;
   farm.tile_rows = tile_rows;
+  farm.test_stall_rank = test_stall_rank;
   farm.progress = stderr_progress();
   dist::FarmStats stats;
   Image img = dist::farm_frame(comm, prepare, farm, &stats);
   if (comm.rank() != 0) return;
+  dist::stop_if_orphaned();  // a job that was ended writes nothing
   const std::string device = std::to_string(comm.size()) + " MPI ranks (rank 0: " + stats.ranks[0].devices + ")";
   write_image(img, out, image_metadata("clrt render", o, depth, o.engine, device), format);
   std::FILE* report = target.kind == OutputKind::File ? stdout : stderr;
@@ -76,7 +79,8 @@ void render_across_ranks(const RenderOptions& o, const std::string& out, const s
 // rebuilds nothing); each frame is written, atomically, as it is done, so a
 // failure leaves the frames written before it, complete, and no partial
 // file. Under mpirun whole frames are farmed out to the ranks
-// (dist/frame_queue.hpp) and rank 0 writes them.
+// (dist/frame_queue.hpp); each rank encodes the frames it renders and rank 0
+// writes their bytes.
 void render_frames(const RenderOptions& o, const std::vector<std::string>& paths, const std::string& format) {
   const auto t0 = Clock::now();
   dist::Communicator& comm = dist::world();
@@ -131,15 +135,27 @@ void render_frames(const RenderOptions& o, const std::vector<std::string>& paths
     return img;
   };
 
+  // Each frame is encoded where it was rendered (under mpirun, on every rank
+  // at once: rank 0 only writes the bytes), with its metadata.
+  const auto device_of = [&](const dist::FrameRun& run) {
+    return across ? dist::rank_label(run.rank, run.host) + ": " + run.devices : run.devices;
+  };
+  const dist::EncodeFrameFn encode = [&](const Image& img, const Scene& scene, const dist::FrameRun& run) {
+    const size_t i = size_t(run.index);
+    RenderOptions frame_options = o;  // scene_path: the frame's, for its metadata
+    frame_options.scene_path = o.scene_paths[i];
+    const ImageMetadata metadata =
+        image_metadata("clrt render", frame_options, o.image.effective_depth(scene), o.engine, device_of(run));
+    return encode_image(img, paths[i], metadata, format);
+  };
   // Rank 0: each frame written, and its line, as it arrives.
-  RenderOptions frame_options = o;  // scene_path: the frame's, for its metadata
   std::vector<double> frame_ms;
-  const dist::FrameDoneFn done = [&](const Image& img, const dist::FrameRun& run) {
+  const dist::FileDoneFn done = [&](const std::string& file, const dist::FrameRun& run) {
     const size_t i = size_t(run.index);
     const int depth = depths[i];
-    frame_options.scene_path = o.scene_paths[i];
-    const std::string device = across ? dist::rank_label(run.rank, run.host) + ": " + run.devices : run.devices;
-    write_image(img, paths[i], image_metadata("clrt render", frame_options, depth, o.engine, device), format);
+    const std::string device = device_of(run);
+    dist::stop_if_orphaned();  // a job that was ended writes nothing
+    write_output(paths[i], file);
     frame_ms.push_back(run.ms);
     clear_progress_line();
     if (o.engine == "opencl")
@@ -154,11 +170,13 @@ void render_frames(const RenderOptions& o, const std::vector<std::string>& paths
   dist::FrameQueueSettings queue;
   queue.width = o.image.width, queue.height = o.image.height, queue.contents = settings.kernel.output;
   queue.progress = stderr_progress();
+  queue.encode = encode;
+  queue.file_done = done;
   dist::FrameQueueStats stats;
   const dist::SceneSource scenes = [&](size_t i) {
     return held[i] ? held[i] : std::make_shared<const Scene>(o.image.load_scene(o.scene_paths[i], /*warn=*/false));
   };
-  dist::farm_frames(comm, o.scene_paths.size(), scenes, queue, render, done, &stats);
+  dist::farm_frames(comm, o.scene_paths.size(), scenes, queue, render, /*done=*/nullptr, &stats);
   if (comm.rank() != 0) return;
   clear_progress_line();
   const std::string where = across ? " on " + std::to_string(comm.size()) + " MPI ranks" : "";
@@ -176,9 +194,11 @@ void add_render_command(CLI::App& app) {
   auto out = std::make_shared<std::string>();
   auto format = std::make_shared<std::string>();
   auto tile_rows = std::make_shared<int>(0);
+  auto stall_rank = std::make_shared<int>(-1);
   auto* cmd = app.add_subcommand(
       "render", "Render a scene to an image (png, ppm, exr, ...), or several scenes to numbered frames");
   o->add(cmd, /*with_engine=*/true, /*several_scenes=*/true);
+  o->image.add_ray_cut_flag(cmd);
   cmd->add_option("-o,--output", *out,
                   "Output image; the extension picks the format ('-' = PNG on standard output, as are devices and "
                   "FIFOs named without an extension). A run of '#' in its file name is the frame number, "
@@ -193,14 +213,18 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::Range(0, kMaxImageEdge))
       ->capture_default_str()
       ->group(kDeveloperGroup);
-  cmd->callback([o, out, format, tile_rows] {
+  add_mpi_timeout_option(cmd);
+  // A test hook, not in the help (an empty group): rank R stops taking part
+  // in MPI in the middle of its first rows message (dist::FarmSettings).
+  cmd->add_option("--mpi-test-stall", *stall_rank, "")->check(CLI::Range(1, 1 << 20))->group("");
+  cmd->callback([o, out, format, tile_rows, stall_rank] {
     o->validate();
     // One name per frame (a pattern's run of '#' is replaced, for one scene too).
     const std::vector<std::string> paths = frame_paths(*out, int(o->scene_paths.size()));
     if (paths.size() > 1) return render_frames(*o, paths, *format);
     o->scene_path = o->scene_paths.at(0);
     const std::string& path = paths[0];
-    if (dist::world().distributed()) return render_across_ranks(*o, path, *format, *tile_rows);
+    if (dist::world().distributed()) return render_across_ranks(*o, path, *format, *tile_rows, *stall_rank);
     const OutputTarget target = check_output_format(path, *format);  // fail before rendering
     Scene scene = o->image.load_scene(o->scene_path);
     int depth = o->image.effective_depth(scene);

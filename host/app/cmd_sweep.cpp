@@ -70,6 +70,14 @@ void check_sweep_outputs(const SweepOutputs& out) {
 // options and outputs, reads the scene and selects the devices; every rank
 // gets them (no shared file system is assumed) and measures the cells rank
 // 0 hands it (dist/eval_grids.hpp); rank 0 reports.
+// The image options at the sweep's deepest depth: the scene's ray tree is
+// checked there (ray budget, warning), not at --depth, which a sweep ignores.
+ImageOptions deepest(const ImageOptions& image, int depth) {
+  ImageOptions at = image;
+  at.depth = depth;
+  return at;
+}
+
 void sweep_across_ranks(const RenderOptions& o, const std::string& depths, const std::string& devices,
                         const SweepSettings& base, const SweepOutputs& out) {
   dist::Communicator& comm = dist::world();
@@ -80,7 +88,7 @@ void sweep_across_ranks(const RenderOptions& o, const std::string& depths, const
     dist::SweepInput in;
     parse_depth_range(depths, in.depth_from, in.depth_to);
     check_sweep_outputs(out);  // fail before any rank measures
-    in.scene = o.image.load_scene(o.scene_path);
+    in.scene = deepest(o.image, in.depth_to).load_scene(o.scene_path);
     devs = select_devices(spec);
     for (const auto& d : devs) in.devices.push_back(dist::device_label(d));
     return dist::encode_sweep_input(in);
@@ -108,6 +116,7 @@ void add_sweep_command(CLI::App& app) {
   auto as_json = std::make_shared<bool>(false);
   auto* cmd = app.add_subcommand("sweep", "Bench figures and error vs reference per recursion depth (and device)");
   o->add(cmd, /*with_engine=*/false);
+  add_mpi_timeout_option(cmd);
   cmd->add_option("--depths", *depths, "Depth range A:B, inclusive")->capture_default_str();
   cmd->add_option("--devices", *devices,
                   "Devices: index, P:D, list (0,1), 'all', or name substring; unset: those of --device");
@@ -125,7 +134,7 @@ void add_sweep_command(CLI::App& app) {
     o->validate();
     parse_depth_range(*depths, s.depth_from, s.depth_to);
     check_sweep_outputs(out);  // fail before measuring
-    Scene scene = o->image.load_scene(o->scene_path);
+    Scene scene = deepest(o->image, s.depth_to).load_scene(o->scene_path);
     auto devs = select_devices(devices->empty() ? o->device.device : *devices);
     report_sweep(run_sweep(scene, devs, o->settings(), s), o->scene_path, out, nullptr);
   });

@@ -17,6 +17,7 @@ std::string sampling_words(const Sampling& s) {
     w += std::string(", adaptive ") + t;
   }
   if (s.subsample != Subsample::Off) w += ", subsample " + subsample_name(s.subsample);
+  if (!s.ray_cut) w += ", no ray cut";
   return w;
 }
 

@@ -53,10 +53,12 @@ int status_of_symmetric(int status) {
   return clrt::dist::world().rank() != 0 || clrt::dist::environment_rank() != 0 ? clrt::kExitOk : status;
 }
 
-// The subcommands that spread their work over the ranks of an MPI job; the
-// others refuse to run with more than one rank (each rank would do all of it).
-bool runs_across_ranks(const std::string& command) {
-  return command == "render" || command == "sweep" || command == "accuracy";
+// The subcommands that spread their work over the ranks of an MPI job (and
+// `cache warm`, which every rank runs for its own node); the others refuse to
+// run with more than one rank (each rank would do all of it). `next`: the
+// word after the command that is not an option.
+bool runs_across_ranks(const std::string& command, const std::string& next) {
+  return command == "render" || command == "sweep" || command == "accuracy" || (command == "cache" && next == "warm");
 }
 
 // An MPI job's checks before the command line is read: a clrt built without
@@ -71,9 +73,12 @@ void check_launch(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
     if (word.empty() || word[0] == '-') continue;
-    if (!runs_across_ranks(word))
+    std::string next;
+    for (int j = i + 1; j < argc && next.empty(); ++j)
+      if (argv[j][0] != '-') next = argv[j];
+    if (!runs_across_ranks(word, next))
       throw clrt::UserError("'" + word + "' does not run across MPI ranks (" + std::to_string(dist::world().size()) +
-                            " here): run it without mpirun; render, sweep and accuracy do");
+                            " here): run it without mpirun; render, sweep, accuracy and cache warm do");
     return;
   }
 }
@@ -137,6 +142,8 @@ void add_quiet_flag(CLI::App* cmd) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A rank whose mpirun is gone stops at once (dist/communicator.hpp).
+  clrt::dist::watch_launcher();
   // Named "clrt" whatever the path it runs from (usage lines, the man page).
   CLI::App app{"clrt - OpenCL Whitted ray tracer (Computer Graphics from Scratch, ch. 2-5) with a double reference",
                "clrt"};

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "clrt_layout.h"
+#include "dist/communicator.hpp"
 #include "image/plot.hpp"
 #include "render/precision.hpp"
 #include "scene/ray_tree.hpp"
@@ -54,6 +55,22 @@ void ImageOptions::add(CLI::App* cmd, bool with_depth, bool with_spp, bool with_
         ->default_str("");  // unset: off
 }
 
+void ImageOptions::add_ray_budget(CLI::App* cmd) {
+  cmd->add_option("--ray-budget", ray_budget,
+                  "Refuse, before any work, a frame whose ray tree may pass this many rays (its worst case, with the "
+                  "weight cut-off; docs/reference/limits.md)")
+      ->check(CLI::Range(1.0, 1e300))
+      ->capture_default_str()
+      ->group(kDeveloperGroup);
+}
+
+void ImageOptions::add_ray_cut_flag(CLI::App* cmd) {
+  cmd->add_flag("--no-ray-cut", no_ray_cut,
+                "Trace every reflected and refracted ray down to the depth: no weight cut-off (by default a ray too "
+                "light to move a pixel's 8-bit value by more than one level is not traced; docs/reference/limits.md)")
+      ->group(kDeveloperGroup);
+}
+
 void ImageOptions::validate() const {
   if (width <= 0 || height <= 0)
     throw UserError("--width/--height must be > 0 (got " + std::to_string(width) + "x" + std::to_string(height) + ")");
@@ -81,6 +98,11 @@ Scene ImageOptions::fit_scene(Scene scene, const std::string& path, bool warn) c
   if (!aspect.empty()) scene.camera.aspect_from_image = aspect == "image";
   scene.camera = camera_for_image(scene.camera, width, height);
   if (!warn) return scene;
+  // Work that would not end is refused, work that may not end today is
+  // announced (below), before it starts.
+  const std::string refused =
+      ray_budget_error(scene, effective_depth(scene), width, height, spp, ray_budget, !no_ray_cut);
+  if (!refused.empty()) throw UserError(path + ": " + refused);
   if (!square_pixels(scene.camera, width, height)) {
     char ratio[32];
     std::snprintf(ratio, sizeof ratio, "%.3g", pixel_aspect(scene.camera, width, height));
@@ -88,8 +110,7 @@ Scene ImageOptions::fit_scene(Scene scene, const std::string& path, bool warn) c
                                        ":1): the viewport's shape is not " + std::to_string(width) + "x" +
                                        std::to_string(height) + "'s; --aspect image fits it to the image");
   }
-  // Work that may not end today is announced before it starts.
-  const std::string work = ray_tree_warning(scene, effective_depth(scene), width, height, spp);
+  const std::string work = ray_tree_warning(scene, effective_depth(scene), width, height, spp, !no_ray_cut);
   if (!work.empty()) log_message(LogLevel::Warning, path + ": " + work);
   return scene;
 }
@@ -200,6 +221,17 @@ void parse_depth_range(const std::string& s, int& from, int& to) {
     throw UserError("--depths: need 0 <= A <= B <= " + std::to_string(CLRT_MAX_DEPTH) + " (got \"" + s + "\")");
 }
 
+void add_mpi_timeout_option(CLI::App* cmd) {
+  cmd->add_option_function<double>(
+         "--mpi-timeout", [](double seconds) { dist::set_silence_bound_s(seconds); },
+         "Under mpirun: end the job, naming the rank and its host, when a rank that owes rank 0 a message has sent "
+         "none for this many seconds (a rank at work sends a heartbeat every quarter of it, at most every 5 s; "
+         "docs/guide/mpi.md)")
+      ->check(CLI::Range(0.1, 1e6))
+      ->default_str(std::to_string(int(dist::kDefaultSilenceBoundS)))
+      ->group(kDeveloperGroup);
+}
+
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help) {
   cmd->add_option("--repeat", repeat, help)->check(CLI::Range(1, kMaxRepeat))->capture_default_str();
 }
@@ -212,6 +244,7 @@ void RenderOptions::add(CLI::App* cmd, bool with_engine, bool several_scenes) {
   else
     cmd->add_option("scene", scene_path, "Scene file (JSON)")->required();
   image.add(cmd);
+  image.add_ray_budget(cmd);
   if (with_engine) cmd->add_option("--engine", engine, "opencl or reference")->capture_default_str();
   device.add(cmd, /*several=*/true);
   kernel.add(cmd, /*with_variant=*/true);

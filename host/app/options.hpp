@@ -10,6 +10,7 @@
 #include "eval/accuracy.hpp"
 #include "eval/sweep.hpp"
 #include "render/renderer.hpp"
+#include "scene/ray_tree.hpp"
 #include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
@@ -50,13 +51,28 @@ struct ImageOptions {
 
   // with_subsample: --subsample (commands that compare variants list it as one instead)
   void add(CLI::App* cmd, bool with_depth = true, bool with_spp = true, bool with_subsample = true);
-  Sampling sampling() const { return Sampling(spp, adaptive, subsample); }
+  // --ray-budget (the commands that load scene files: load_scene() checks it).
+  void add_ray_budget(CLI::App* cmd);
+  // --no-ray-cut (render and compare: the commands whose images it changes).
+  void add_ray_cut_flag(CLI::App* cmd);
+  // --no-ray-cut: trace every ray down to the depth (scene/ray_tree.hpp).
+  bool no_ray_cut = false;
+  // --ray-budget N: refuse a frame whose ray tree may pass N rays.
+  double ray_budget = kRayBudget;
+
+  Sampling sampling() const {
+    Sampling s(spp, adaptive, subsample);
+    s.ray_cut = !no_ray_cut;
+    return s;
+  }
   void validate() const;
   int effective_depth(const Scene& s) const { return depth == kSceneDepth ? s.recursion_depth : depth; }
   // Loads a scene for an image of this size: its camera as --aspect and the
   // scene say (camera_for_image()), with a warning when its pixels are not
   // square and one when its ray tree may take hours (scene/ray_tree.hpp);
-  // warn = false: without them (a scene loaded again for its frame).
+  // warn = false: without them (a scene loaded again for its frame). A
+  // frame over the ray budget is a UserError (with warn only: it was
+  // checked at the first load).
   Scene load_scene(const std::string& path, bool warn = true) const;
   // The same for a scene already parsed, named `name` in the warnings (the
   // Python module's scenes).
@@ -102,6 +118,11 @@ struct LaunchOptions {
   TilePolicy tiles() const { return TilePolicy{max_launch_ms, band_rows}; }
   LocalSize local() const;
 };
+
+// --mpi-timeout SECONDS (render, sweep, accuracy: the commands that run
+// across MPI ranks): how long rank 0 waits for a rank that owes it a message
+// (dist::silence_bound_s()).
+void add_mpi_timeout_option(CLI::App* cmd);
 
 // --repeat N: timed runs, in [1, kMaxRepeat].
 constexpr int kMaxRepeat = 1000;

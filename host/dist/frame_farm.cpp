@@ -69,25 +69,32 @@ void render_tile(Renderer& r, Image& img, int y0, int y1, RankShare& share) {
   share.rows += y1 - y0;
 }
 
-Image work(Communicator& comm, const std::function<Renderer&()>& prepare) {
+Image work(Communicator& comm, const std::function<Renderer&()>& prepare, const FarmSettings& settings) {
   RankShare share;
   share.host = comm.host();
   std::exception_ptr failure;
   try {
-    Renderer& r = prepare();
-    share.devices = r.device_names();
+    // The build and each tile run beside this thread's heartbeats.
+    Renderer* r = nullptr;
+    keep_alive(comm, [&] { r = &prepare(); });
+    share.devices = r->device_names();
     Image img;
     for (;;) {
       const Message m = receive_work(comm);
       Reader in(m.data);
       const int y0 = in.get<int32_t>(), y1 = in.get<int32_t>();
       if (y1 <= y0) break;  // no tiles left
-      render_tile(r, img, y0, y1, share);
+      keep_alive(comm, [&] { render_tile(*r, img, y0, y1, share); });
       const auto sent = Clock::now();
       // Straight from the image: the rows stay untouched until the frame
       // ends (flush() below), and the next tile writes other rows.
       comm.send_pieces(0, kTagRows + y0, row_pieces(img, y0, y1));
       share.send_ms += ms_since(sent);
+      // The tests' stalled link: this rank stops taking part in MPI in the
+      // middle of that rows message (over TCP its bytes then stop flowing)
+      // and waits to be ended.
+      if (comm.rank() == settings.test_stall_rank)
+        for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
     }
     comm.send(0, kTagReport, encode_share(share));
     comm.flush();
@@ -188,6 +195,24 @@ Image master(Communicator& comm, const std::function<Renderer&()>& prepare, cons
   std::string remote_failure;
   long long bytes = 0;
   double gather_ms = 0;
+  // A tile's rows are received straight into the frame: their first row is
+  // in the tag, their count in the size. Each rank's rows arrive on their
+  // own (Communicator::try_receive), so a rank whose link stalls holds up
+  // none of the others' tiles.
+  const size_t row_bytes = row_pixel_bytes(settings.contents) * size_t(settings.width);
+  comm.set_receive_into([&](int from, int tag, size_t size) -> std::vector<Span> {
+    if (tag < kTagRows) return {};
+    const int y0 = tag - kTagRows;
+    const size_t rows = size / row_bytes;
+    if (y0 >= settings.height || size % row_bytes != 0 || rows == 0 || rows > size_t(settings.height - y0))
+      throw DeviceError("MPI: rank " + std::to_string(from) + " sent rows that do not fit the frame");
+    return row_pieces(img, y0, y0 + int(rows));
+  });
+  struct Unset {
+    Communicator& comm;
+    ~Unset() { comm.set_receive_into(nullptr); }
+  } unset{comm};
+  Liveness live(comm);
   // Polls: 20 us after a message, doubling to 1 ms while none comes (each
   // wake-up takes rank 0's core from its render thread; workers have a
   // tile in hand meanwhile), and 20 us again once every tile is out.
@@ -197,10 +222,13 @@ Image master(Communicator& comm, const std::function<Renderer&()>& prepare, cons
   long long shown = 0;
   while ((waiting > 0 || !local_done) && remote_failure.empty() && !local_failure) {
     const auto polled = Clock::now();
-    int from = 0, tag = 0;
-    size_t size = 0;
-    if (!comm.probe(kAnySource, kAnyTag, from, tag, size)) {
+    Message m;
+    if (!comm.try_receive(m)) {
       if (settings.progress && rows_done != shown) settings.progress(int(shown = rows_done), settings.height, "rows");
+      const std::string silent = live.silent([&](int r) { return !reported[size_t(r)]; });
+      if (!silent.empty())
+        fail_silent(comm, silent + "; " + std::to_string(rows_done) + " of " + std::to_string(settings.height) +
+                              " rows had arrived");
       std::this_thread::sleep_for(pause);
       // Every tile handed out: the frame ends within one tile's time, and
       // each wake-up's delay would add to it; before that, back off.
@@ -208,24 +236,14 @@ Image master(Communicator& comm, const std::function<Renderer&()>& prepare, cons
       continue;
     }
     pause = poll;
-    if (tag >= kTagRows) {
-      // A tile's rows, received straight into the frame; their first row
-      // is in the tag, their count in the size.
-      const int y0 = tag - kTagRows;
-      const size_t row_bytes = row_pixel_bytes(settings.contents) * size_t(settings.width);
-      const size_t rows = size / row_bytes;
-      if (y0 >= settings.height || size % row_bytes != 0 || rows == 0 || rows > size_t(settings.height - y0))
-        throw DeviceError("MPI: rank " + std::to_string(from) + " sent rows that do not fit the frame");
-      const int y1 = y0 + int(rows);
-      comm.receive_pieces(from, tag, row_pieces(img, y0, y1));
+    live.heard(m.source);
+    if (m.tag >= kTagRows && m.in_place) {
       gather_ms += ms_since(polled);
-      bytes += (long long)size;
-      rows_done += y1 - y0;
-      give(from);
+      bytes += (long long)m.bytes;
+      rows_done += (long long)(m.bytes / row_bytes);
+      give(m.source);
       continue;
     }
-    Message m;
-    if (!comm.try_receive(m, from, tag)) continue;
     if (m.tag == kTagReport) {
       shares[size_t(m.source)] = decode_share(m.data, m.source);
       reported[size_t(m.source)] = true;
@@ -269,7 +287,7 @@ Image farm_frame(Communicator& comm, const std::function<Renderer&()>& prepare, 
     Bytes start;
     comm.broadcast(start, 0);
   }
-  if (comm.rank() != 0) return work(comm, prepare);
+  if (comm.rank() != 0) return work(comm, prepare, settings);
   if (comm.distributed()) return master(comm, prepare, settings, stats);
   // A world of one: the frame as one process renders it.
   const auto t0 = Clock::now();

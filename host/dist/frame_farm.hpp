@@ -44,6 +44,10 @@ struct FarmSettings {
   // end of the frame and no rank waits long for the last one.
   int tile_rows = 0;
   ProgressFn progress{};  // rank 0: rows done of the frame
+  // A test hook (clrt render's hidden --mpi-test-stall): this rank stops
+  // taking part in MPI right after sending its first rows, as a link that
+  // stalls in the middle of a message would. -1: none.
+  int test_stall_rank = -1;
 };
 constexpr long long kMinTilePixels = 32768;
 
@@ -52,7 +56,7 @@ struct FarmStats {
   int tiles = 0;
   double wall_ms = 0;
   long long bytes_received = 0;  // rows sent to rank 0
-  double gather_ms = 0;          // rank 0's MPI thread: receiving those messages and storing their rows
+  double gather_ms = 0;          // rank 0's MPI thread: the polls that completed those messages (straight into the frame)
 };
 
 // Collective: every rank calls it. `prepare` constructs and prepares this

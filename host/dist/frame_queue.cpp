@@ -3,9 +3,10 @@
 // Messages (tags of dist/job.hpp):
 //   kTagWork   rank 0 -> rank: int32 frame index, uint64 n, n bytes of its
 //              encoded scene; index -1: no frames left
-//   kTagResult rank -> rank 0: int32 index, the FrameRun, uint64 n, n bytes
-//              of encode_rows(): one band of the frame (the whole frame
-//              unless it exceeds kMaxTileBytes)
+//   kTagResult rank -> rank 0: int32 index, the FrameRun, uint8 kind, uint64
+//              n, n bytes: kind 0, encode_rows(): one band of the frame (the
+//              whole frame unless it exceeds kMaxTileBytes); kind 1, the
+//              frame's encoded file (FrameQueueSettings::encode), whole
 //   kTagReport rank -> rank 0: its share, after its last frame
 // and the failure protocol of job.hpp (kTagError, kTagStop, kTagStopped).
 #include "dist/frame_queue.hpp"
@@ -63,6 +64,9 @@ Bytes get_bytes(Reader& r) {
   return b;
 }
 
+// What a result message holds after its FrameRun.
+constexpr uint8_t kRows = 0, kFile = 1;
+
 // Renders one frame and times it; across ranks the frame must be what the
 // queue gathers.
 Image render_frame(const RenderFrameFn& render, const Scene& scene, FrameRun& run, const FrameQueueSettings& s,
@@ -103,11 +107,26 @@ void work(Communicator& comm, const FrameQueueSettings& settings, const RenderFr
       const Scene scene = decode_scene(get_bytes(in));
       FrameRun run;
       run.index = index, run.rank = comm.rank(), run.host = share.host;
-      const Image img = render_frame(render, scene, run, settings, /*check=*/true);
+      Image img;
+      std::string file;
+      keep_alive(comm, [&] {
+        img = render_frame(render, scene, run, settings, /*check=*/true);
+        if (settings.encode) file = settings.encode(img, scene, run);
+      });
       add_frame(share, run, settings.height);
+      if (settings.encode) {
+        Writer w;
+        put_run(w, run);
+        w.put<uint8_t>(kFile);
+        w.put<uint64_t>(file.size());
+        w.put_raw(file.data(), file.size());
+        comm.send(0, kTagResult, w.bytes);
+        continue;
+      }
       for (int y0 = 0; y0 < settings.height; y0 += band) {
         Writer w;
         put_run(w, run);
+        w.put<uint8_t>(kRows);
         const Bytes rows = encode_rows(img, y0, std::min(settings.height, y0 + band));
         w.put<uint64_t>(rows.size());
         w.put_raw(rows.data(), rows.size());
@@ -132,10 +151,12 @@ struct Arriving {
   int rows = 0;
 };
 
-// A frame rank 0's own thread finished.
+// A frame rank 0's own thread finished: its pixels, or its file where the
+// queue encodes.
 struct Finished {
   Image img;
   FrameRun run;
+  std::string file;
 };
 
 void master(Communicator& comm, size_t count, const SceneSource& scenes, const FrameQueueSettings& settings,
@@ -176,10 +197,13 @@ void master(Communicator& comm, size_t count, const SceneSource& scenes, const F
       while (take(local_index)) {
         FrameRun run;
         run.index = local_index, run.rank = 0, run.host = host;
-        Image img = render_frame(render, *scenes(size_t(local_index)), run, settings, /*check=*/true);
+        const std::shared_ptr<const Scene> scene = scenes(size_t(local_index));
+        Image img = render_frame(render, *scene, run, settings, /*check=*/true);
+        std::string file;
+        if (settings.encode) file = settings.encode(img, *scene, run), img = Image{};
         add_frame(shares[0], run, settings.height);
         std::lock_guard<std::mutex> lock(mutex);
-        finished.push_back(Finished{std::move(img), run});
+        finished.push_back(Finished{std::move(img), run, std::move(file)});
       }
     } catch (...) {
       local_failure = std::current_exception();
@@ -214,15 +238,19 @@ void master(Communicator& comm, size_t count, const SceneSource& scenes, const F
   std::exception_ptr own_failure;  // done() or a malformed message
   long long bytes = 0;
   std::map<int, Arriving> arriving;
-  const auto deliver = [&](const Image& img, const FrameRun& run) {
+  const auto deliver = [&](const Image& img, const std::string& file, const FrameRun& run) {
     longest_ms = std::max(longest_ms, run.ms);
-    done(img, run);
+    if (settings.encode)
+      settings.file_done(file, run);
+    else
+      done(img, run);
     ++frames_done;
     if (settings.progress) settings.progress(frames_done, frames, "frames");
   };
   if (settings.progress) settings.progress(0, frames, "frames");
   auto pause = std::chrono::microseconds(20);
   const auto failed = [&] { return !remote_failure.empty() || own_failure || (local_done && local_failure); };
+  Liveness live(comm);
   while ((frames_done < frames || waiting > 0) && !failed()) {
     try {
       std::vector<Finished> mine;
@@ -230,32 +258,45 @@ void master(Communicator& comm, size_t count, const SceneSource& scenes, const F
         std::lock_guard<std::mutex> lock(mutex);
         mine.swap(finished);
       }
-      for (const Finished& f : mine) deliver(f.img, f.run);
+      for (const Finished& f : mine) deliver(f.img, f.file, f.run);
       if (!mine.empty()) continue;
       Message m;
       if (!comm.try_receive(m)) {
+        const std::string silent = live.silent([&](int r) { return !reported[size_t(r)]; });
+        if (!silent.empty())
+          fail_silent(comm, silent + "; " + std::to_string(frames_done) + " of " + std::to_string(frames) +
+                                " frames were done");
         std::this_thread::sleep_for(pause);
         pause = std::min(pause * 2, std::chrono::microseconds(1000));
         continue;
       }
       pause = std::chrono::microseconds(20);
+      live.heard(m.source);
       if (m.tag == kTagResult) {
         Reader in(m.data);
         const FrameRun run = get_run(in, m.source);
+        const uint8_t kind = in.get<uint8_t>();
         const Bytes rows = get_bytes(in);
         if (run.index < 0 || run.index >= frames) throw DeviceError("MPI: a frame out of the job in a message");
+        if (kind != (settings.encode ? kFile : kRows)) throw DeviceError("MPI: a frame of the wrong kind in a message");
+        bytes += (long long)m.data.size();
+        if (kind == kFile) {
+          --outstanding[size_t(m.source)];
+          give(m.source, 2);
+          deliver(Image{}, std::string(rows.begin(), rows.end()), run);
+          continue;
+        }
         Arriving& a = arriving[run.index];
         if (a.img.pixels() == 0) a.img = Image(settings.width, settings.height, settings.contents), a.run = run;
         int y0 = 0, y1 = 0;
         decode_rows(rows, a.img, y0, y1);
-        bytes += (long long)m.data.size();
         a.rows += y1 - y0;
         if (a.rows < settings.height) continue;
         const Arriving whole = std::move(a);
         arriving.erase(run.index);
         --outstanding[size_t(m.source)];
         give(m.source, 2);
-        deliver(whole.img, whole.run);
+        deliver(whole.img, {}, whole.run);
       } else if (m.tag == kTagReport) {
         shares[size_t(m.source)] = decode_share(m.data, m.source);
         reported[size_t(m.source)] = true;
@@ -327,9 +368,13 @@ void farm_frames(Communicator& comm, size_t count, const SceneSource& scenes, co
   for (int i = 0; i < frames; ++i) {
     FrameRun run;
     run.index = i, run.host = share.host;
-    const Image img = render_frame(render, *scenes(size_t(i)), run, settings, /*check=*/false);
+    const std::shared_ptr<const Scene> scene = scenes(size_t(i));
+    const Image img = render_frame(render, *scene, run, settings, /*check=*/false);
     add_frame(share, run, settings.height);
-    done(img, run);
+    if (settings.encode)
+      settings.file_done(settings.encode(img, *scene, run), run);
+    else
+      done(img, run);
     if (settings.progress) settings.progress(i + 1, frames, "frames");
   }
   if (stats) *stats = FrameQueueStats{{share}, frames, ms_since(t0), 0};

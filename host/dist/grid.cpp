@@ -53,7 +53,9 @@ void work(Communicator& comm, const CellFn& compute) {
       Reader in(m.data);
       const int cell = in.get<int32_t>();
       if (cell < 0) break;  // no cells left
-      comm.send(0, kTagResult, encode_result(cell, timed_cell(compute, cell, share)));
+      Bytes result;
+      keep_alive(comm, [&] { result = timed_cell(compute, cell, share); });
+      comm.send(0, kTagResult, encode_result(cell, result));
     }
     comm.send(0, kTagReport, encode_share(share));
     comm.flush();
@@ -162,6 +164,7 @@ void master(Communicator& comm, int cells, const CellFn& compute, const GatherFn
   bool local_done = false;
   long long bytes = 0;
   auto pause = std::chrono::microseconds(20);
+  Liveness live(comm);
   while (remote_failure.empty() && !local_failure) {
     try {
       std::pair<int, Bytes> own;
@@ -179,11 +182,16 @@ void master(Communicator& comm, int cells, const CellFn& compute, const GatherFn
       }
       Message m;
       if (!comm.try_receive(m)) {
+        const std::string silent = live.silent([&](int r) { return !reported[size_t(r)]; });
+        if (!silent.empty())
+          fail_silent(comm, silent + "; " + std::to_string(gathered) + " of " + std::to_string(cells) +
+                                " cells were done");
         std::this_thread::sleep_for(pause);
         pause = std::min(pause * 2, std::chrono::microseconds(1000));
         continue;
       }
       pause = std::chrono::microseconds(20);
+      live.heard(m.source);
       if (m.tag == kTagResult) {
         bytes += (long long)m.data.size();
         Reader in(m.data);

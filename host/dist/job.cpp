@@ -1,8 +1,13 @@
 // job.cpp - sharing input from rank 0, and failing as one job.
 #include "dist/job.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -108,6 +113,71 @@ void stop_ranks(Communicator& comm, const std::vector<int>& running, const std::
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
   comm.flush();
+}
+
+namespace {
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+void keep_alive(Communicator& comm, const std::function<void()>& work) {
+  std::mutex mutex;
+  std::condition_variable finished;
+  bool done = false;
+  std::exception_ptr failure;
+  std::thread worker([&] {
+    try {
+      work();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    done = true;
+    finished.notify_one();
+  });
+  const auto beat = std::chrono::duration<double>(std::min(5.0, silence_bound_s() / 4));
+  std::unique_lock<std::mutex> lock(mutex);
+  while (!finished.wait_for(lock, beat, [&] { return done; })) {
+    lock.unlock();
+    try {
+      comm.send(0, kTagAlive, {});
+    } catch (...) {  // (the work's own end says what went wrong)
+    }
+    lock.lock();
+  }
+  lock.unlock();
+  worker.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+Liveness::Liveness(Communicator& comm) : comm_(comm), last_s_(size_t(comm.size()), now_s()) {}
+
+void Liveness::heard(int rank) {
+  if (rank >= 0 && rank < int(last_s_.size())) last_s_[size_t(rank)] = now_s();
+}
+
+std::string Liveness::silent(const std::function<bool(int)>& owes) const {
+  const double bound = silence_bound_s(), now = now_s();
+  for (int r = 1; r < int(last_s_.size()); ++r) {
+    if (!owes(r) || now - last_s_[size_t(r)] <= bound) continue;
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "no message for %g s (--mpi-timeout): the rank or its link stalled (a rank at work sends one "
+                  "every %g s)",
+                  bound, std::min(5.0, bound / 4));
+    return rank_label(r, comm_.host_of(r)) + ": " + text;
+  }
+  return "";
+}
+
+void fail_silent(Communicator& comm, const std::string& line) {
+  std::fprintf(stderr, "clrt: error: %s\n", line.c_str());
+  std::fflush(stderr);
+  comm.abort(2);
+  std::_Exit(2);  // (abort() does not return; the compiler cannot see it through the interface)
 }
 
 }  // namespace clrt::dist

@@ -27,6 +27,7 @@ enum Tag : int {
   kTagReport = 4,   // rank -> rank 0: this rank's share, at the end
   kTagStop = 5,     // rank 0 -> rank: stop now, the job failed
   kTagStopped = 6,  // rank -> rank 0: stopped
+  kTagAlive = 7,    // rank -> rank 0: still at work (a heartbeat while it computes; keep_alive())
   // rank -> rank 0: a tile's rows, straight from the image's memory
   // (frame_farm.cpp); the tag is kTagRows + the tile's first row (MPI
   // guarantees tags up to 32767; rows stay below kMaxImageEdge = 16384).
@@ -60,6 +61,35 @@ void stop_ranks(Communicator& comm, const std::vector<int>& running, const std::
 
 // One line for any exception a rank's work throws (OpenCL errors described).
 std::string exception_text(const std::exception_ptr& e);
+
+// A rank other than 0: runs `work` on a thread of its own while this thread
+// (the one that calls MPI) sends rank 0 a heartbeat (kTagAlive) every
+// quarter of silence_bound_s(), at most every 5 s; returns when it is done,
+// or rethrows what it threw. A long kernel build or tile is then no
+// silence to rank 0's watch (Liveness); a rank that hangs, or whose link
+// stalls, is.
+void keep_alive(Communicator& comm, const std::function<void()>& work);
+
+// Rank 0's watch over the ranks that owe it a message: each message from a
+// rank resets its clock; silent() names the first that has been quiet for
+// longer than silence_bound_s().
+class Liveness {
+ public:
+  explicit Liveness(Communicator& comm);
+  void heard(int rank);
+  // "" or the error line's text ("rank 2 (h3): no message for 60 s ...")
+  // for the first rank r with owes(r) that has been silent too long.
+  std::string silent(const std::function<bool(int rank)>& owes) const;
+
+ private:
+  Communicator& comm_;
+  std::vector<double> last_s_;  // steady-clock seconds of each rank's last message
+};
+
+// Rank 0 when a rank has gone silent: the one error line, then MPI_Abort
+// (2): a rank that answers nothing cannot take part in MPI_Finalize, and
+// mpirun ends every rank.
+[[noreturn]] void fail_silent(Communicator& comm, const std::string& line);
 
 // "rank 2 (node07): " for messages.
 std::string rank_label(int rank, const std::string& host);

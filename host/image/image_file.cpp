@@ -156,10 +156,11 @@ std::string encode(const std::string& path, const std::string& name, int w, int 
   return scratch.read();
 }
 
-// The bytes of a file of `name`'s format (its extension) holding the pixels;
-// `path` names it in errors.
-std::string pixel_bytes(const std::string& path, const std::string& name, int w, int h, imageio::PixelType type,
-                        const void* data, const ImageMetadata& metadata) {
+// The bytes of the file `path` (of `kind`) in `format` holding `pixels`.
+std::string encode_pixels(const std::string& path, OutputKind kind, const std::string& format, int w, int h,
+                          imageio::PixelType type, const void* data, const ImageMetadata& metadata) {
+  check_image_format(path, kind, format);
+  const std::string name = format_name(path, kind, format);
   const std::string ext = lowercase_extension(name);
   if (ext == "pfm") {
     const size_t n = size_t(w) * h * 3;
@@ -178,9 +179,7 @@ std::string pixel_bytes(const std::string& path, const std::string& name, int w,
 // write_output() meets any change since.)
 void write_pixels(const std::string& path, const std::string& format, int w, int h, imageio::PixelType type,
                   const void* data, const ImageMetadata& metadata) {
-  const OutputKind kind = resolve_output(path).kind;
-  check_image_format(path, kind, format);
-  write_output(path, pixel_bytes(path, format_name(path, kind, format), w, h, type, data, metadata));
+  write_output(path, encode_pixels(path, resolve_output(path).kind, format, w, h, type, data, metadata));
 }
 
 // What a file of a float format (or not) holds of `img`: the colour tags,
@@ -262,20 +261,23 @@ PixelFormat output_pixel_format(const std::string& path, const std::string& form
   return is_float_ext(format_ext(path, kind, format_arg(format))) ? PixelFormat::Float : PixelFormat::Rgba8;
 }
 
-void write_image(const Image& img, const std::string& path, const ImageMetadata& metadata,
-                 const std::string& format_in) {
+// An image's file bytes, for write_image() (a file at `path`, of `kind`) and
+// encode_image() (a regular file's bytes, in memory).
+std::string file_bytes(const Image& img, const std::string& path, OutputKind kind, const ImageMetadata& metadata,
+                       const std::string& format_in) {
   const std::string format = format_arg(format_in);
   const bool floating = output_pixel_format(path, format) == PixelFormat::Float;
   const FilePixels px = file_pixels(img, floating, metadata, path);
-  write_pixels(path, format, img.width, img.height, px.type, px.data(), px.metadata);
+  return encode_pixels(path, kind, format, img.width, img.height, px.type, px.data(), px.metadata);
 }
 
-std::string image_bytes(const Image& img, const std::string& format_in, const ImageMetadata& metadata) {
-  const std::string format = format_arg(format_in);
-  const std::string name = "image." + format;
-  check_image_format(name, OutputKind::File, "");
-  const FilePixels px = file_pixels(img, is_float_ext(format), metadata, name);
-  return pixel_bytes(name, name, img.width, img.height, px.type, px.data(), px.metadata);
+void write_image(const Image& img, const std::string& path, const ImageMetadata& metadata, const std::string& format) {
+  write_output(path, file_bytes(img, path, resolve_output(path).kind, metadata, format));
+}
+
+std::string encode_image(const Image& img, const std::string& path, const ImageMetadata& metadata,
+                         const std::string& format) {
+  return file_bytes(img, path, OutputKind::File, metadata, format);
 }
 
 ImageMetadata read_metadata(const std::string& path, const std::vector<std::string>& keys) {

@@ -54,10 +54,14 @@ PixelFormat output_pixel_format(const std::string& path, const std::string& form
 // comments in PPM and HDR (`# key=value`); BMP and PFM have no place for it.
 void write_image(const Image& img, const std::string& path, const ImageMetadata& metadata = {},
                  const std::string& format = "");
-// The bytes write_image() would write for a format named by its extension
-// ("png", "exr", ...), in memory: the Python module's images as a notebook
-// shows them (PNG). UserError for a format clrt cannot write.
-std::string image_bytes(const Image& img, const std::string& format, const ImageMetadata& metadata = {});
+// The bytes write_image() would write to the regular file `path`, made
+// without touching the file system (`path` picks the format unless `format`
+// does, and names the file in messages): for a rank of an MPI job that
+// encodes the frames it renders, which rank 0 then writes with
+// write_output(), and the Python module's images as a notebook shows them
+// (PNG). UserError for a format clrt cannot write.
+std::string encode_image(const Image& img, const std::string& path, const ImageMetadata& metadata = {},
+                         const std::string& format = "");
 // Reads the first three channels of an image file (untrusted input) on the
 // book's 0..255 scale: integer formats as 8-bit values; float formats x 255
 // where the file says 1.0 is white (clrt:white in EXR, clrt's comment in

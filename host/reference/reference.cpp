@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "scene/ray_tree.hpp"
 #include "util/doing.hpp"
 #include "util/error.hpp"
 
@@ -27,7 +28,8 @@ struct Hit {
 
 class Tracer {
  public:
-  explicit Tracer(const Scene& s) : s_(s) {}
+  // min_weight: the weight cut-off (scene/ray_tree.hpp); 0 = none.
+  Tracer(const Scene& s, double min_weight) : s_(s), min_weight_(min_weight) {}
 
   // IntersectRaySphere: both roots of |O + tD - C|^2 = r^2 (inf, inf if none).
   static void IntersectRaySphere(Vec3 O, Vec3 D, const Sphere& sphere, double& t1, double& t2) {
@@ -224,6 +226,10 @@ class Tracer {
   }
 
   // shadowed/hit are filled for the primary ray only (classification output).
+  // `weight` is the ray's share of the pixel: the product of the shares
+  // (r, (1 - r) t) along its path, 1 for a camera ray. A child ray whose
+  // weight would be below min_weight_ is not traced: its colour counts as
+  // black (the cut-off, scene/ray_tree.hpp: it moves no pixel by a level).
   //
   // Transparency (chapter 5) extends the book's blend: of the light that is
   // not reflected (1 - r), a share t passes through the surface, so
@@ -231,18 +237,25 @@ class Tracer {
   // where total internal reflection sends the refracted share along the
   // reflected ray. Shadow rays stay the book's: a transparent sphere blocks
   // light like any other. With t = 0 this is the book's line, exactly.
-  Vec3 TraceRay(Vec3 O, Vec3 D, double t_min, double t_max, int depth, double medium, int32_t* hit,
+  Vec3 TraceRay(Vec3 O, Vec3 D, double t_min, double t_max, int depth, double medium, double weight, int32_t* hit,
                 int32_t* shadowed) const {
-    return ShadeHit(ClosestIntersection(O, D, t_min, t_max), O, D, depth, medium, hit, shadowed);
+    return ShadeHit(ClosestIntersection(O, D, t_min, t_max), O, D, depth, medium, weight, hit, shadowed);
+  }
+
+  // A child ray of weight `weight`: traced, or black when the cut-off drops it.
+  Vec3 TraceChild(Vec3 O, Vec3 D, int depth, double medium, double weight) const {
+    if (weight < min_weight_) return Vec3{0, 0, 0};
+    return TraceRay(O, D, s_.epsilon, kInf, depth, medium, weight, nullptr, nullptr);
   }
 
   // TraceRay after its ClosestIntersection: the colour of the hit h of the
   // ray O + tD (the background where there is none).
-  Vec3 ShadeHit(const Hit& h, Vec3 O, Vec3 D, int depth, double medium, int32_t* hit, int32_t* shadowed) const {
+  Vec3 ShadeHit(const Hit& h, Vec3 O, Vec3 D, int depth, double medium, double weight, int32_t* hit,
+                int32_t* shadowed) const {
     if (!h.found()) return s_.background;
     if (hit) *hit = HitId(h);
     Vec3 P = O + h.t * D;
-    if (!h.sphere) return FlatColor(h, P, D, depth, medium, shadowed);
+    if (!h.sphere) return FlatColor(h, P, D, depth, medium, weight, shadowed);
     Vec3 N = P - h.sphere->center;
     N = (1.0 / length(N)) * N;
     Vec3 V = -1.0 * D;
@@ -252,24 +265,27 @@ class Tracer {
     if (depth <= 0 || (r <= 0 && t <= 0)) return local_color;
     Vec3 R = ReflectRay(V, N);
     if (t <= 0) {
-      Vec3 reflected_color = TraceRay(P, R, s_.epsilon, kInf, depth - 1, medium, nullptr, nullptr);
+      Vec3 reflected_color = TraceChild(P, R, depth - 1, medium, weight * r);
       return (1 - r) * local_color + r * reflected_color;
     }
     bool entering = dot(D, N) <= 0;
     double n2 = entering ? h.sphere->refractive_index : MediumOutside(*h.sphere);
     Vec3 T;
     bool refracts = RefractRay(D, N, medium, n2, T);
+    // Under total internal reflection the reflected ray carries the
+    // refracted share too.
+    const double refracted_share = (1 - r) * t;
+    const double reflected_share = refracts ? r : r + refracted_share;
     Vec3 reflected_color{0, 0, 0};
-    if (r > 0 || !refracts) reflected_color = TraceRay(P, R, s_.epsilon, kInf, depth - 1, medium, nullptr, nullptr);
-    Vec3 refracted_color =
-        refracts ? TraceRay(P, T, s_.epsilon, kInf, depth - 1, n2, nullptr, nullptr) : reflected_color;
+    if (r > 0 || !refracts) reflected_color = TraceChild(P, R, depth - 1, medium, weight * reflected_share);
+    Vec3 refracted_color = refracts ? TraceChild(P, T, depth - 1, n2, weight * refracted_share) : reflected_color;
     return (1 - r) * ((1 - t) * local_color + t * refracted_color) + r * reflected_color;
   }
 
   // A plane or triangle: opaque, two-sided, flat shaded. Its normal is the
   // plane's, or the triangle's (v1 - v0) x (v2 - v0), turned against the ray;
   // then the book's shading and reflection as for a sphere.
-  Vec3 FlatColor(const Hit& h, Vec3 P, Vec3 D, int depth, double medium, int32_t* shadowed) const {
+  Vec3 FlatColor(const Hit& h, Vec3 P, Vec3 D, int depth, double medium, double weight, int32_t* shadowed) const {
     const Material& m = h.plane ? h.plane->material : h.triangle->material;
     Vec3 N = h.plane ? h.plane->normal : cross(h.triangle->v1 - h.triangle->v0, h.triangle->v2 - h.triangle->v0);
     if (dot(N, D) > 0) N = -1.0 * N;
@@ -279,12 +295,13 @@ class Tracer {
     double r = m.reflective;
     if (depth <= 0 || r <= 0) return local_color;
     Vec3 R = ReflectRay(V, N);
-    Vec3 reflected_color = TraceRay(P, R, s_.epsilon, kInf, depth - 1, medium, nullptr, nullptr);
+    Vec3 reflected_color = TraceChild(P, R, depth - 1, medium, weight * r);
     return (1 - r) * local_color + r * reflected_color;
   }
 
  private:
   const Scene& s_;
+  double min_weight_;
 };
 
 }  // namespace
@@ -297,7 +314,7 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
     throw std::invalid_argument("render_reference: subsampling needs spp 1");
   const Doing doing("rendering " + std::to_string(width) + "x" + std::to_string(height) + " with the reference");
   Image img(width, height);
-  Tracer tracer(scene);
+  Tracer tracer(scene, sampling.ray_cut ? double(ray_cut(scene).min_weight) : 0.0);
   const Camera& cam = scene.camera;
   const double camera_medium = tracer.CameraMedium();
   const auto& m = cam.rotation;
@@ -341,7 +358,8 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
               // the ray passes the assumed primitive by: search after all
               if (!h.found()) h = tracer.ClosestIntersection(cam.position, D, 1, kInf);
             }
-            const Vec3 c = tracer.ShadeHit(h, cam.position, D, depth, camera_medium, &img.hit[p], &img.shadowed[p]);
+            const Vec3 c =
+                tracer.ShadeHit(h, cam.position, D, depth, camera_medium, 1.0, &img.hit[p], &img.shadowed[p]);
             img.rgb[p * 3 + 0] = c.x;
             img.rgb[p * 3 + 1] = c.y;
             img.rgb[p * 3 + 2] = c.z;
@@ -353,7 +371,7 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
         // Sample s's colour; its primary hit goes to *hit_id.
         auto sample = [&](int s, int32_t* hit_id, int32_t* shadowed) {
           const double ox = ((s % n) + 0.5) / n - 0.5, oy = ((s / n) + 0.5) / n - 0.5;
-          return tracer.TraceRay(cam.position, camera_ray(x + ox, y + oy), 1, kInf, depth, camera_medium, hit_id,
+          return tracer.TraceRay(cam.position, camera_ray(x + ox, y + oy), 1, kInf, depth, camera_medium, 1.0, hit_id,
                                  shadowed);
         };
         // The classification is the first sample's.

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "render/conditioning.hpp"
+#include "scene/ray_tree.hpp"
 
 namespace clrt {
 
@@ -19,7 +20,7 @@ namespace clrt {
 static_assert(sizeof(clrt_f32) == 4 && sizeof(clrt_i32) == 4, "32-bit scalars");
 static_assert(sizeof(clrt_sphere) == 80, "clrt_sphere size");
 static_assert(sizeof(clrt_light) == 48, "clrt_light size");
-static_assert(sizeof(clrt_params) == 184, "clrt_params size");
+static_assert(sizeof(clrt_params) == 188, "clrt_params size");
 static_assert(sizeof(clrt_material) == 32, "clrt_material size");
 static_assert(sizeof(clrt_plane) == 64, "clrt_plane size");
 static_assert(sizeof(clrt_triangle) == 96, "clrt_triangle size");
@@ -148,6 +149,7 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
   p.background[1] = static_cast<float>(scene.background.y);
   p.background[2] = static_cast<float>(scene.background.z);
   p.camera_medium = static_cast<float>(camera_medium(scene));
+  p.min_weight = sampling.ray_cut ? ray_cut(scene).min_weight : 0.0f;
   // Only transparent spheres can be another sphere's medium: the search
   // runs over them alone (none in the book's scenes).
   const std::vector<size_t> transparent = transparent_spheres(scene);

@@ -43,6 +43,11 @@ struct Sampling {
 
   Subsample subsample = Subsample::Off;  // (above; spp 1 only)
 
+  // The weight cut-off of the ray tree (scene/ray_tree.hpp): child rays too
+  // light to move a pixel by a level are not traced. false: every ray down
+  // to the depth is (--no-ray-cut; the tests' image without the cut).
+  bool ray_cut = true;
+
   Sampling() = default;
   Sampling(int samples_per_axis, double threshold = -1, Subsample subsampling = Subsample::Off)
       : spp(samples_per_axis), adaptive_threshold(threshold), subsample(subsampling) {}

@@ -439,7 +439,7 @@ py::array_t<uint8_t> to_uint8(const FloatArray& a) {
 
 py::bytes encode_array(const FloatArray& a, const std::string& format) {
   const Image img = image_from_array(a);
-  const std::string bytes = run_released<std::string>([&](const CancelFn&) { return image_bytes(img, format); });
+  const std::string bytes = run_released<std::string>([&](const CancelFn&) { return encode_image(img, "image", {}, format); });
   return py::bytes(bytes);
 }
 

@@ -41,9 +41,13 @@ void check_one_error(const RunResult& r, const std::string& needle) {
 const std::vector<std::string> kCommands = {"devices", "render",   "compare",   "bench",    "sweep",
                                             "scaling", "accuracy", "stability", "generate", "cache"};
 
-// The long options `clrt COMMAND --help` lists.
+// The long options `clrt COMMAND --help` lists (COMMAND: words, "cache warm").
 std::set<std::string> help_options(const std::string& command) {
-  const RunResult r = run_clrt({command, "--help"});
+  std::vector<std::string> args;
+  std::istringstream words(command);
+  for (std::string w; words >> w;) args.push_back(w);
+  args.push_back("--help");
+  const RunResult r = run_clrt(args);
   REQUIRE(r.status == 0);
   std::set<std::string> out;
   std::istringstream in(r.out);
@@ -78,7 +82,7 @@ TEST_CASE("a bare clrt prints the usage and one error line", "[cli]") {
   CHECK_THAT(r.out, Contains("Usage: clrt [OPTIONS] SUBCOMMAND"));
   for (const auto& c : kCommands) CHECK_THAT(r.out, Contains("  " + c + " "));
   const RunResult cache = run_clrt({"cache"});
-  check_one_error(cache, "a cache subcommand is required (one of: info, clear)");
+  check_one_error(cache, "a cache subcommand is required (one of: info, warm, clear)");
   CHECK_THAT(cache.out, Contains("Usage: clrt cache [OPTIONS] SUBCOMMAND"));
 }
 
@@ -191,6 +195,44 @@ TEST_CASE("cache info and cache clear", "[cli][cache]") {
   CHECK(run_clrt({"cache", "clear"}, "CLRT_CACHE_DIR=" + clrt_test::shell_quote(dir / "none")).status == 0);
 }
 
+TEST_CASE("cache warm stores the programs a render then loads", "[cli][cache][opencl]") {
+  // A node's cache starts cold (the first frame builds: seconds on PoCL);
+  // `cache warm` builds and stores what a render with the same options
+  // would use, so that render loads it (its --verbose line says so).
+  TempDir dir;
+  const std::string env = "CLRT_CACHE_DIR=" + clrt_test::shell_quote(dir / "cache");
+  const std::string glass = clrt_test::source_path("scenes/glass.json");
+  const std::vector<std::string> size{"--width", "64", "--height", "48", "--aspect", "image"};
+  const auto with = [&](std::vector<std::string> args) {
+    args.insert(args.end(), size.begin(), size.end());
+    return args;
+  };
+  // Cold, a render builds (so that the check below can fail).
+  RunResult cold = run_clrt(with({"render", glass, "-o", dir / clrt_test::image_name("cold"), "--verbose"}),
+                            "CLRT_CACHE_DIR=" + clrt_test::shell_quote(dir / "other"));
+  INFO(cold.err);
+  CHECK_THAT(cold.err, Contains("program built, stored in cache"));
+  const RunResult warm = run_clrt(with({"cache", "warm", glass}), env);
+  INFO(warm.out << warm.err);
+  REQUIRE(warm.status == 0);
+  CHECK_THAT(warm.out, Contains(glass + ": "));
+  CHECK_THAT(warm.out, Contains("built and stored in the cache"));
+  const RunResult render = run_clrt(with({"render", glass, "-o", dir / clrt_test::image_name("x"), "--verbose"}), env);
+  INFO(render.err);
+  CHECK(render.status == 0);
+  CHECK_THAT(render.err, Contains("program loaded from cache"));
+  CHECK_THAT(render.err, !Contains("program built"));
+  CHECK_THAT(run_clrt(with({"cache", "warm", glass}), env).out, Contains("in the cache already"));
+  // Float outputs take another program: --format warms it.
+  if (!clrt::kLeanBuild) {
+    REQUIRE(run_clrt(with({"cache", "warm", glass, "--format", "pfm"}), env).status == 0);
+    const RunResult pfm = run_clrt(with({"render", glass, "-o", dir / "x.pfm", "--verbose"}), env);
+    CHECK_THAT(pfm.err, Contains("program loaded from cache"));
+  }
+  check_one_error(run_clrt(with({"cache", "warm", glass, "--no-cache"}), env), "--no-cache");
+  check_one_error(run_clrt(with({"cache", "warm", dir / "none.json"}), env), "none.json");
+}
+
 TEST_CASE("the bash completion knows every subcommand and option", "[cli]") {
   const std::string script = clrt_test::source_path("packaging/clrt.bash-completion");
   REQUIRE(fs::exists(script));
@@ -212,7 +254,8 @@ TEST_CASE("the bash completion knows every subcommand and option", "[cli]") {
   const auto commands = complete("''");
   for (const auto& c : kCommands) CHECK(commands.count(c) == 1);
   CHECK(complete("ren") == std::set<std::string>{"render"});
-  CHECK(complete("cache ''") == std::set<std::string>{"info", "clear"});
+  CHECK(complete("cache ''") == std::set<std::string>{"info", "clear", "warm"});
+  CHECK(complete("cache warm -") == help_options("cache warm"));
   CHECK(complete("render --precision r") == std::set<std::string>{"robust"});
   for (const auto& c : kCommands) {
     if (c == "cache") continue;

@@ -758,7 +758,16 @@ TEST_CASE("a scene whose ray tree may take hours says so before the work", "[cli
     "lights": [{"type": "ambient", "intensity": 1}]})");
   const clrt::Scene s = clrt::load_scene(shells);
   CHECK(clrt::worst_rays_per_camera_ray(s, 3) == 15);
-  CHECK(clrt::worst_rays_per_camera_ray(s, 30) == std::ldexp(1.0, 31) - 1);
+  CHECK(clrt::worst_rays_per_camera_ray(s, 30, /*cut=*/false) == std::ldexp(1.0, 31) - 1);
+  // The weight cut-off (scene/ray_tree.hpp) bounds every level at
+  // min_weight^-alpha rays (here ~5e7): 2^26 - 1 rays down to level 25,
+  // then at most that many a level.
+  const clrt::RayCut cut = clrt::ray_cut(s);
+  const double per_level = std::floor(std::pow(double(cut.min_weight), -cut.exponent));
+  CHECK(per_level < std::ldexp(1.0, 26));
+  CHECK(per_level > std::ldexp(1.0, 25));
+  CHECK(clrt::worst_rays_per_camera_ray(s, 30) == std::ldexp(1.0, 26) - 1 + 5 * per_level);
+  CHECK(clrt::worst_rays_per_camera_ray(s, 64) == std::ldexp(1.0, 26) - 1 + 39 * per_level);
   CHECK(clrt::ray_tree_warning(s, 3, 600, 600, 1).empty());
   CHECK_FALSE(clrt::ray_tree_warning(s, 30, 600, 600, 1).empty());
   // The book's demo: reflection only, depth + 1 rays.
@@ -768,9 +777,49 @@ TEST_CASE("a scene whose ray tree may take hours says so before the work", "[cli
   const std::string aside = dir.write("aside.json", R"({"spheres": [
       {"center": [0, 100, 4], "radius": 1, "color": [200, 200, 255], "reflective": 0.3, "transparency": 0.7}],
     "lights": [{"type": "ambient", "intensity": 1}]})");
-  const RunResult r = run_clrt({"render", aside, "--engine", "reference", "--depth", "40", "--width", "1",
-                                "--height", "1", "-o", dir / clrt_test::image_name("s")});
+  RunResult r = run_clrt({"render", aside, "--engine", "reference", "--depth", "40", "--width", "1", "--height",
+                          "1", "--no-ray-cut", "-o", dir / clrt_test::image_name("s")});
   INFO(r.err);
   CHECK(r.status == 0);
   CHECK_THAT(r.err, Contains("clrt: warning: " + aside + ": a camera ray may branch into up to 2.2e+12 rays"));
+  // With the cut: at most 2^26 - 1 + 15 x 5.15e7 = 8.39e8 rays a camera ray.
+  r = run_clrt({"render", aside, "--engine", "reference", "--depth", "40", "--width", "1000", "--height", "1000",
+                "-o", dir / clrt_test::image_name("s")});
+  CHECK(r.status == 0);
+  CHECK_THAT(r.err, Contains("clrt: warning: " + aside + ": a camera ray may branch into up to 8.39e+08 rays"));
+}
+
+TEST_CASE("a frame over the ray budget is refused before the work", "[cli][hardening][ray-cut]") {
+  // A fully transparent, half-reflective sphere passes all of its light on
+  // to two rays: no cut-off can be honest there, and at depth 64 a camera
+  // ray that stays inside may take 2^65 - 1 rays. Such a frame would never
+  // end; it is refused with one error line, before any file is made.
+  TempDir dir;
+  const std::string lossless = dir.write("lossless.json", R"({"spheres": [
+      {"center": [0, 0, 4], "radius": 1, "color": [200, 200, 255], "reflective": 0.5, "transparency": 1,
+       "refractive_index": 1.5}],
+    "lights": [{"type": "ambient", "intensity": 1}]})");
+  const std::string out = dir / clrt_test::image_name("x");
+  RunResult r = run_clrt({"render", lossless, "--depth", "64", "--width", "8", "--height", "8", "-o", out});
+  INFO(r.err);
+  CHECK(r.status == 2);
+  CHECK(r.one_line_error());
+  CHECK_THAT(r.err, Contains("up to 3.69e+19 rays at depth 64 (a surface passes all of its light on to two rays"));
+  CHECK_THAT(r.err, Contains("over the ray budget of 1e+18 (--ray-budget)"));
+  r = run_clrt({"compare", lossless, "--depth", "64", "--width", "8", "--height", "8"});
+  CHECK(r.status == 2);
+  CHECK(r.one_line_error());
+  // A sweep is checked at its deepest depth.
+  r = run_clrt({"sweep", lossless, "--depths", "0:64", "--width", "8", "--height", "8"});
+  CHECK(r.status == 2);
+  CHECK(r.one_line_error());
+  CHECK_THAT(r.err, Contains("at depth 64"));
+  // A scene whose surfaces keep some light is bounded by the cut at any
+  // depth: the shells of the test above are not refused at depth 64.
+  const std::string shells = dir.write("shells.json", R"({"spheres": [
+      {"center": [0, 100, 4], "radius": 1, "color": [200, 200, 255], "reflective": 0.3, "transparency": 0.7}],
+    "lights": [{"type": "ambient", "intensity": 1}]})");
+  r = run_clrt({"render", shells, "--depth", "64", "--width", "8", "--height", "8", "-o", out});
+  CHECK(r.status == 0);
+  CHECK(dir.entries().size() == 3);
 }

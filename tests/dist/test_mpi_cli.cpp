@@ -175,3 +175,110 @@ TEST_CASE("a clrt built without MPI refuses an mpirun launch", "[mpi-cli]") {
   CHECK_THAT(job.err, Catch::Contains("built without MPI"));
   CHECK(dir.entries().empty());
 }
+
+TEST_CASE("mpirun: a rank whose link stalls mid-message ends the job within the bound, naming it",
+          "[mpi-cli][opencl]") {
+  SKIP_WITHOUT_MPI();
+  TempDir dir;
+  const std::string out = dir / clrt_test::image_name("stalled");
+  // Over TCP (through shared memory rank 0 would read the rest of a message
+  // itself): rank 2 stops taking part in MPI in the middle of its first rows
+  // message (the hidden test hook), a 67-row tile of 640-pixel rows, 171 KB,
+  // past TCP's 64 KiB eager limit: its bytes stop flowing. Ranks 0 and 1 get
+  // the rest of the frame's tiles meanwhile; rank 0 then ends the job after
+  // the bound (3 s here), naming rank 2. Before, rank 0 sat in a blocking
+  // receive of those rows: no rank got another tile, and the job never
+  // ended (`timeout` ends it here after 600 s).
+  const RunResult job = run_command_line(
+      "timeout 600 mpirun -q --oversubscribe --allow-run-as-root --mca btl tcp,self -np 3 " +
+      clrt_test::clrt_command({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", out, "--width", "640",
+                               "--height", "480", "--aspect", "image", "--mpi-test-stall", "2", "--mpi-timeout", "3"}));
+  INFO(job.err);
+  CHECK(job.status == 2);
+  const std::vector<std::string> lines = clrt_test::clrt_lines(job.err);
+  REQUIRE(lines.size() == 1);
+  CHECK_THAT(lines[0], Catch::StartsWith("clrt: error: rank 2 ("));
+  CHECK_THAT(lines[0], Catch::Contains("no message for 3 s (--mpi-timeout)"));
+  // The other ranks were served: most of the frame arrived (all but rank 2's
+  // two tiles, at most a third of it).
+  const size_t at = lines[0].find("; ");
+  REQUIRE(at != std::string::npos);
+  const int rows = std::stoi(lines[0].substr(at + 2));
+  CHECK(rows >= 480 * 2 / 3);
+  CHECK(rows < 480);
+  CHECK(dir.entries().empty());
+}
+
+TEST_CASE("mpirun killed mid-frame: no rank outlives it, nothing is written", "[mpi-cli][opencl]") {
+  SKIP_WITHOUT_MPI();
+  TempDir dir;
+  const std::string out = dir / clrt_test::image_name("orphan");
+  // A frame of several seconds (spp 16 over 3 ranks on 2 cores). mpirun
+  // killed with SIGKILL ends none of its ranks itself (a second SIGTERM, as
+  // `timeout` and schedulers send, does the same): each rank must stop on
+  // its own (PR_SET_PDEATHSIG) and rank 0 must not write the frame.
+  const std::string line = "mpirun -q --oversubscribe --allow-run-as-root -np 3 " +
+                           clrt_test::clrt_command({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o",
+                                                    out, "--width", "1280", "--height", "720", "--spp", "16"});
+  RunResult job;
+  std::thread runner([&] { job = run_command_line(line); });
+  // The processes of this job: mpirun (its first word) and the ranks (their
+  // environment names their rank).
+  const auto job_processes = [&](bool want_mpirun) {
+    std::vector<int> pids;
+    for (const auto& proc : fs::directory_iterator("/proc")) {
+      const std::string pid = proc.path().filename();
+      if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+      const std::string cmdline = clrt_test::slurp(proc.path() / "cmdline");
+      if (cmdline.find(out) == std::string::npos) continue;
+      const std::string first = cmdline.substr(0, cmdline.find('\0'));
+      const bool is_mpirun = fs::path(first).filename() == "mpirun";
+      const bool is_rank =
+          clrt_test::slurp(proc.path() / "environ").find("OMPI_COMM_WORLD_RANK=") != std::string::npos;
+      if (want_mpirun ? is_mpirun : is_rank && !is_mpirun) pids.push_back(std::stoi(pid));
+    }
+    return pids;
+  };
+  // Kill mpirun once its three ranks have run for ~1.5 s (they render).
+  bool killed = false;
+  for (int attempt = 0; attempt < 400 && !killed; ++attempt) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (job_processes(false).size() < 3) continue;
+    for (int wait = 0; wait < 30; ++wait) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    for (int pid : job_processes(true)) killed = ::kill(pid, SIGKILL) == 0 || killed;
+  }
+  runner.join();
+  REQUIRE(killed);
+  // Every rank gone within a few seconds (PDEATHSIG: at once; before, the
+  // ranks rendered on, and rank 0 could write the frame after mpirun had
+  // returned).
+  std::vector<int> left = job_processes(false);
+  for (int wait = 0; wait < 100 && !left.empty(); ++wait) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    left = job_processes(false);
+  }
+  CHECK(left.empty());
+  for (int pid : left) ::kill(pid, SIGKILL);
+  CHECK(dir.entries().empty());  // neither the image nor its temp file
+}
+
+TEST_CASE("mpirun clrt cache warm: every rank warms its node's cache, rank 0 reports", "[mpi-cli][cache][opencl]") {
+  SKIP_WITHOUT_MPI();
+  TempDir dir;
+  // (Both ranks run here, so they share one cache: the second finds the
+  // entry the first stored, or stores the same one; either is a warm cache.)
+  const std::string env = "CLRT_CACHE_DIR=" + shell_quote(dir / "cache") + " ";
+  const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json");
+  const RunResult job = run_command_line(
+      env + clrt_test::mpirun_prefix(2) +
+      clrt_test::clrt_command({"cache", "warm", scene, "--width", "64", "--height", "48", "--aspect", "image"}));
+  INFO(job.out << job.err);
+  CHECK(job.status == 0);
+  CHECK(lines_starting(job.out, "rank 0 (") == 1);
+  CHECK(lines_starting(job.out, "rank 1 (") == 1);
+  const RunResult render = clrt_test::run_clrt({"render", scene, "-o", dir / clrt_test::image_name("x"), "--width",
+                                                "64", "--height", "48", "--aspect", "image", "--verbose"},
+                                               env.substr(0, env.size() - 1));
+  INFO(render.err);
+  CHECK_THAT(render.err, Catch::Contains("program loaded from cache"));
+}

@@ -105,7 +105,7 @@ TEST_CASE("PFM is written by clrt itself: little-endian rows bottom to top", "[i
   CHECK_NOTHROW(clrt::check_output_format(dir / "y.pfm"));
 }
 
-TEST_CASE("image_bytes are the bytes write_image writes, and a Unit frame writes as its Float twin", "[image]") {
+TEST_CASE("encode_image gives the bytes write_image writes, and a Unit frame writes as its Float twin", "[image]") {
   TempDir dir;
   const clrt::Image img = sample_frame();
   clrt::Image unit(4, 1, clrt::FrameContents{clrt::PixelFormat::Unit, false});
@@ -115,10 +115,11 @@ TEST_CASE("image_bytes are the bytes write_image writes, and a Unit frame writes
     INFO("." << ext);
     const std::string path = dir / ("f." + ext);
     clrt::write_image(img, path, meta);
-    CHECK(clrt::image_bytes(img, ext, meta) == clrt_test::slurp(path));
-    CHECK(clrt::image_bytes(unit, "." + ext, meta) == clrt_test::slurp(path));
+    CHECK(clrt::encode_image(img, "f", meta, ext) == clrt_test::slurp(path));
+    CHECK(clrt::encode_image(img, "f." + ext, meta) == clrt_test::slurp(path));
+    CHECK(clrt::encode_image(unit, "f", meta, "." + ext) == clrt_test::slurp(path));
   }
-  CHECK_THROWS_AS(clrt::image_bytes(img, "notaformat"), clrt::UserError);
+  CHECK_THROWS_AS(clrt::encode_image(img, "f", {}, "notaformat"), clrt::UserError);
 }
 
 TEST_CASE("older clrt float files (0..255, no clrt:white) still read as stored", "[image]") {
