@@ -101,11 +101,12 @@ std::string accuracy_markdown(const std::vector<AccuracyRow>& rows) {
 }
 
 std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySettings& s, const std::string& device,
-                          int mpi_ranks) {
+                          const std::vector<std::string>& overrides, int mpi_ranks) {
   nlohmann::ordered_json out = header_json(report_header(device));
   if (mpi_ranks > 1) out["mpi_ranks"] = mpi_ranks;
   out.update(nlohmann::ordered_json{
       {"device", device}, {"width", s.width}, {"height", s.height}, {"spp", s.spp}, {"repeat", s.repeat}});
+  out["overrides"] = overrides_json(overrides);
   nlohmann::ordered_json arr = nlohmann::ordered_json::array();
   for (const auto& r : rows) {
     nlohmann::ordered_json j = {

@@ -12,9 +12,10 @@ namespace clrt {
 std::string accuracy_table(const std::vector<AccuracyRow>& rows);  // fixed-width text
 std::string accuracy_markdown(const std::vector<AccuracyRow>& rows);
 // JSON: the report header, "mpi_ranks" when more than one rank measured the
-// rows (dist/eval_grids.hpp), device, width, height, spp, repeat, "rows".
+// rows (dist/eval_grids.hpp), device, width, height, spp, repeat, overrides
+// (the -D texts, as overrides_json), "rows".
 std::string accuracy_json(const std::vector<AccuracyRow>& rows, const AccuracySettings& s, const std::string& device,
-                          int mpi_ranks = 1);
+                          const std::vector<std::string>& overrides, int mpi_ranks = 1);
 // CSV: the report header columns, device, scene, variant, depth, supported,
 // kernel_ms_median, kernel_time_source, then compare's metric columns.
 std::string accuracy_csv(const std::vector<AccuracyRow>& rows, const std::string& device);

@@ -32,7 +32,7 @@ void report_accuracy(const std::vector<AccuracyRow>& rows, const AccuracyOptions
         rows, o.plot,
         "Error vs kernel time, " + std::to_string(s.width) + "x" + std::to_string(s.height) + ", " + device);
   if (o.json) {
-    std::printf("%s\n", accuracy_json(rows, s, device, ranks).c_str());
+    std::printf("%s\n", accuracy_json(rows, s, device, o.image.overrides, ranks).c_str());
     return;
   }
   std::fprintf(report_stream(), "device %s, %dx%d, %dx%d samples per pixel, kernel time = median of %d runs after a warm-up\n",

@@ -5,6 +5,7 @@
 
 #include "app/bench_report.hpp"
 #include "app/options.hpp"
+#include "app/report_header.hpp"
 #include "eval/bench.hpp"
 #include "scene/scene_json.hpp"
 #include "util/error.hpp"
@@ -68,6 +69,7 @@ void add_bench_command(CLI::App& app) {
     if (*as_json) {
       nlohmann::ordered_json j = bench_json(r);
       j["scene"] = o->scene_path;
+      j["overrides"] = overrides_json(o->image.overrides);
       j["precision"] = o->kernel.precision;
       std::printf("%s\n", json_text(j).c_str());
     } else {

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/options.hpp"
+#include "app/report_header.hpp"
 #include "app/sweep_report.hpp"
 #include "dist/communicator.hpp"
 #include "dist/eval_grids.hpp"
@@ -27,8 +28,9 @@ struct SweepOutputs {
   bool json = false;
 };
 
-void report_sweep(const std::vector<SweepRow>& rows, const std::string& scene_path, const SweepOutputs& out,
+void report_sweep(const std::vector<SweepRow>& rows, const RenderOptions& o, const SweepOutputs& out,
                   const dist::GridStats* grid) {
+  const std::string& scene_path = o.scene_path;
   const int ranks = grid ? int(grid->ranks.size()) : 1;
   if (!out.json) {
     if (grid)
@@ -47,7 +49,8 @@ void report_sweep(const std::vector<SweepRow>& rows, const std::string& scene_pa
     std::string second = plot_sweep(rows, out.plot, scene_path);
     if (!out.json) std::fprintf(report_stream(), "wrote %s and %s\n", out.plot.c_str(), second.c_str());
   }
-  if (out.json) std::printf("%s\n", json_text(sweep_json(rows, scene_path, ranks)).c_str());
+  if (out.json)
+    std::printf("%s\n", json_text(sweep_json(rows, scene_path, overrides_json(o.image.overrides), ranks)).c_str());
   if (grid && !out.json) std::fprintf(report_stream(), "%s", dist::grid_share_lines(*grid).c_str());
 }
 
@@ -100,7 +103,7 @@ void sweep_across_ranks(const RenderOptions& o, const std::string& depths, const
   const auto local = [&] { return comm.rank() == 0 ? devs : select_devices(spec); };
   dist::GridStats stats;
   auto rows = dist::sweep_across_ranks(comm, in, local, o.settings(), s, &stats);
-  if (comm.rank() == 0) report_sweep(rows, o.scene_path, out, &stats);
+  if (comm.rank() == 0) report_sweep(rows, o, out, &stats);
 }
 
 }  // namespace
@@ -136,7 +139,7 @@ void add_sweep_command(CLI::App& app) {
     check_sweep_outputs(out);  // fail before measuring
     Scene scene = deepest(o->image, s.depth_to).load_scene(o->scene_path);
     auto devs = select_devices(devices->empty() ? o->device.device : *devices);
-    report_sweep(run_sweep(scene, devs, o->settings(), s), o->scene_path, out, nullptr);
+    report_sweep(run_sweep(scene, devs, o->settings(), s), *o, out, nullptr);
   });
 }
 

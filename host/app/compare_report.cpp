@@ -57,6 +57,7 @@ nlohmann::ordered_json compare_json(const CompareRun& r, const RenderOptions& o)
   nlohmann::ordered_json j = header_json(report_header(classified ? r.opencl.device : std::string()));
   j.update(nlohmann::ordered_json{
       {"scene", o.scene_path},
+      {"overrides", overrides_json(o.image.overrides)},
       {"width", o.image.width},
       {"height", o.image.height},
       {"depth", r.depth},

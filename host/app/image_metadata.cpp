@@ -3,6 +3,8 @@
 
 #include <cstdio>
 
+#include "app/report_header.hpp"
+
 #ifndef CLRT_VERSION
 #define CLRT_VERSION "unknown"
 #endif
@@ -29,10 +31,12 @@ ImageMetadata image_metadata(const std::string& what, const RenderOptions& o, in
                                                         : "-";
   const std::string size = std::to_string(o.image.width) + "x" + std::to_string(o.image.height);
   const std::string sampling = sampling_words(o.image.sampling());
-  return {
+  std::string overridden;  // ", with -D a=1 -D b=2"
+  for (const std::string& text : o.image.overrides) overridden += (overridden.empty() ? ", with -D " : " -D ") + text;
+  ImageMetadata m = {
       {"Software", std::string("clrt ") + CLRT_VERSION},
       {"ImageDescription", what + " of " + o.scene_path + ": " + size + ", depth " + std::to_string(depth) +
-                               ", precision " + precision + ", " + sampling + ", on " + device},
+                               ", precision " + precision + ", " + sampling + ", on " + device + overridden},
       {"clrt:version", CLRT_VERSION},
       {"clrt:scene", o.scene_path},
       {"clrt:width", std::to_string(o.image.width)},
@@ -43,6 +47,9 @@ ImageMetadata image_metadata(const std::string& what, const RenderOptions& o, in
       {"clrt:engine", engine},
       {"clrt:device", device},
   };
+  // Only where -D was given: the scene is then not the file's alone.
+  if (!o.image.overrides.empty()) m.push_back({"clrt:overrides", overrides_json(o.image.overrides).dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace)});
+  return m;
 }
 
 }  // namespace clrt

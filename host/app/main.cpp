@@ -160,6 +160,7 @@ int main(int argc, char** argv) {
   clrt::add_stability_command(app);
   clrt::add_generate_command(app);
   clrt::add_cache_command(app);
+  clrt::add_validate_command(app);
   add_quiet_flag(&app);
   clrt::add_number_checks(&app);
   // Messages of the layers below: none of --verbose's with --quiet, and the
@@ -203,6 +204,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     report(e.what());
     return status_of_symmetric(clrt::kExitBadInput);
+  } catch (const clrt::ProblemsReported&) {
+    return status_of_symmetric(clrt::kExitBadInput);  // (printed by the command, one line a problem)
   } catch (const clrt::CheckFailure& e) {
     report(e.what(), "check failed");
     return status_of_symmetric(clrt::kExitCheckFailed);

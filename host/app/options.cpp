@@ -45,6 +45,7 @@ void ImageOptions::add(CLI::App* cmd, bool with_depth, bool with_spp, bool with_
                     "other to the image, so that pixels are square")
         ->check(CLI::IsMember({"viewport", "image"}))
         ->default_str("");  // unset: the scene's
+  if (with_spp) add_override_option(cmd, overrides);
   if (with_spp && with_subsample)
     cmd->add_option("--subsample", subsample,
                     "The book's subsampling (one ray per pixel): trace the even columns; an odd column's pixel whose "
@@ -88,10 +89,11 @@ void ImageOptions::validate() const {
         std::to_string(spp) + ")");
   if (subsample != Subsample::Off && spp != 1)
     throw UserError("--subsample needs one sample per pixel (got --spp " + std::to_string(spp) + ")");
+  (void)parse_overrides(overrides);  // fail before any work
 }
 
 Scene ImageOptions::load_scene(const std::string& path, bool warn) const {
-  return fit_scene(clrt::load_scene(path), path, warn);
+  return fit_scene(clrt::load_scene(path, {}, parse_overrides(overrides)), path, warn);
 }
 
 Scene ImageOptions::fit_scene(Scene scene, const std::string& path, bool warn) const {
@@ -230,6 +232,17 @@ void add_mpi_timeout_option(CLI::App* cmd) {
       ->check(CLI::Range(0.1, 1e6))
       ->default_str(std::to_string(int(dist::kDefaultSilenceBoundS)))
       ->group(kDeveloperGroup);
+}
+
+void add_override_option(CLI::App* cmd, std::vector<std::string>& overrides) {
+  cmd->add_option("-D,--set", overrides,
+                  "Set a value of the scene as if the scene file said so (repeatable): PATH of keys and array "
+                  "indices, VALUE JSON (-D recursion_depth=5 -D spheres.2.reflective=0.8 -D "
+                  "'camera.position=[0,1,-2]' -D 'camera.aspect=\"image\"')")
+      ->type_name("PATH=VALUE")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->take_all();
 }
 
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help) {

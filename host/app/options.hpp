@@ -48,8 +48,12 @@ struct ImageOptions {
   // --aspect viewport|image: overrides the scene camera's "aspect"
   // (scene/viewport.hpp); "" = the scene's.
   std::string aspect;
+  // -D PATH=VALUE, in the order given: scene values set as if each scene
+  // file said so (scene/scene_json.hpp, SceneOverride).
+  std::vector<std::string> overrides;
 
-  // with_subsample: --subsample (commands that compare variants list it as one instead)
+  // with_subsample: --subsample (commands that compare variants list it as one instead). with_spp: also
+  // --adaptive, --aspect and -D (the commands that render scene files).
   void add(CLI::App* cmd, bool with_depth = true, bool with_spp = true, bool with_subsample = true);
   // --ray-budget (the commands that load scene files: load_scene() checks it).
   void add_ray_budget(CLI::App* cmd);
@@ -123,6 +127,9 @@ struct LaunchOptions {
 // across MPI ranks): how long rank 0 waits for a rank that owes it a message
 // (dist::silence_bound_s()).
 void add_mpi_timeout_option(CLI::App* cmd);
+// -D,--set PATH=VALUE, any number of times, into `overrides` (checked by
+// parse_overrides when the command runs).
+void add_override_option(CLI::App* cmd, std::vector<std::string>& overrides);
 
 // --repeat N: timed runs, in [1, kMaxRepeat].
 constexpr int kMaxRepeat = 1000;
@@ -197,5 +204,6 @@ void add_stability_command(CLI::App& app);
 void add_generate_command(CLI::App& app);
 void add_scaling_command(CLI::App& app);
 void add_cache_command(CLI::App& app);
+void add_validate_command(CLI::App& app);
 
 }  // namespace clrt

@@ -4,6 +4,7 @@
 #include <ctime>
 
 #include "cl/device.hpp"
+#include "scene/scene_json.hpp"
 
 #ifndef CLRT_VERSION
 #define CLRT_VERSION "unknown"
@@ -54,6 +55,12 @@ nlohmann::ordered_json header_json(const ReportHeader& h) {
       {"clrt_version", h.clrt_version},
       {"timestamp_utc", h.timestamp_utc},
       {"device_driver", h.device_driver.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(h.device_driver)}};
+}
+
+nlohmann::ordered_json overrides_json(const std::vector<std::string>& overrides) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (const SceneOverride& o : parse_overrides(overrides)) out[o.path] = nlohmann::ordered_json::parse(o.value);
+  return out;
 }
 
 void header_csv(CsvTable& t, const ReportHeader& h) {

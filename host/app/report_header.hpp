@@ -32,4 +32,9 @@ nlohmann::ordered_json header_json(const ReportHeader& h);
 // The same three as the leading columns of a CSV row.
 void header_csv(CsvTable& t, const ReportHeader& h);
 
+// The -D overrides of a command (ImageOptions::overrides) as one JSON
+// object, path: value, in the order given: "overrides" of the reports that
+// read scene files, and the images' clrt:overrides.
+nlohmann::ordered_json overrides_json(const std::vector<std::string>& overrides);
+
 }  // namespace clrt

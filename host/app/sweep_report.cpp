@@ -75,13 +75,15 @@ std::string sweep_csv(const std::vector<SweepRow>& rows) {
   return t.text();
 }
 
-nlohmann::ordered_json sweep_json(const std::vector<SweepRow>& rows, const std::string& scene, int mpi_ranks) {
+nlohmann::ordered_json sweep_json(const std::vector<SweepRow>& rows, const std::string& scene,
+                                  const nlohmann::ordered_json& overrides, int mpi_ranks) {
   std::vector<std::string> devices;
   for (const auto& r : rows)
     if (std::find(devices.begin(), devices.end(), r.device) == devices.end()) devices.push_back(r.device);
   nlohmann::ordered_json out = header_json(report_header(devices));
   if (mpi_ranks > 1) out["mpi_ranks"] = mpi_ranks;
   out["scene"] = scene;
+  out["overrides"] = overrides;
   if (!rows.empty()) {
     const BenchResult& b = rows.front().bench;
     out.update(nlohmann::ordered_json{{"width", b.width}, {"height", b.height}, {"spp", b.spp}, {"repeat", b.repeat}});

@@ -18,7 +18,9 @@ std::string sweep_csv(const std::vector<SweepRow>& rows);
 // JSON: the report header, "mpi_ranks" when more than one rank ran the sweep
 // (dist/eval_grids.hpp), scene, width, height, spp, repeat, and "rows": the
 // same figures, with "error" and "change" as compare's metric objects.
-nlohmann::ordered_json sweep_json(const std::vector<SweepRow>& rows, const std::string& scene, int mpi_ranks = 1);
+// `overrides`: the command's -D (overrides_json), after "scene".
+nlohmann::ordered_json sweep_json(const std::vector<SweepRow>& rows, const std::string& scene,
+                                  const nlohmann::ordered_json& overrides, int mpi_ranks = 1);
 void print_sweep(const std::vector<SweepRow>& rows);
 // Time per depth (median, min-max bars, and the reference) above the error
 // per depth (RMSE vs reference) to `path`; rays per depth to the same name

@@ -6,8 +6,10 @@
 // of the Scene, not of its text.
 #pragma once
 #include <cstddef>
+#include <functional>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "scene/scene.hpp"
 
@@ -41,17 +43,53 @@ struct SceneLimits {
 // triangles, triangle, vertices, vertex) and the parser stops at the first
 // array or object where the format has none.
 
-// Parses and validates a scene; throws UserError("<name>: <path>: <problem>").
-// Directional light directions are rescaled by a power of two so their
-// largest component lies in [0.5, 1) (no length underflows or overflows):
-// the book's lighting does not depend on their length.
-Scene parse_scene(const std::string& json_text, const std::string& name, const SceneLimits& limits = {});
+// A key of the format (scene_keys.hpp).
+struct Key;
+
+// `-D PATH=VALUE` on the command line: a value set as if the scene file said
+// so (docs/reference/scene-format.md#overrides). PATH's segments are keys and
+// indices into the scene's arrays ("spheres.2.reflective", or
+// "spheres[2].reflective"); VALUE is JSON.
+struct SceneOverride {
+  std::string text;   // as given: "spheres.2.reflective=0.8"
+  std::string path;   // the path, dotted: "spheres.2.reflective"
+  std::string shown;  // the path as messages name it: "spheres[2].reflective"
+  std::string value;  // the JSON text: "0.8"
+  // The path: a key (key set) or an index into the array before it.
+  struct Step {
+    const Key* key = nullptr;
+    size_t index = 0;
+  };
+  std::vector<Step> steps;
+};
+using SceneOverrides = std::vector<SceneOverride>;
+// The overrides of `-D` texts, checked against the format: UserError naming
+// the text for one without '=', a path the format does not have, a value that
+// is not JSON, or a path given twice. Whether the scene has the element a
+// path names, and whether the value keeps the key's rules, is checked as the
+// scene is read.
+SceneOverrides parse_overrides(const std::vector<std::string>& texts);
+
+// Parses and validates a scene; throws UserError("<name>: <path>: <problem>",
+// or "-D <text>: <problem>" for a problem of an override). Directional light
+// directions are rescaled by a power of two so their largest component lies
+// in [0.5, 1) (no length underflows or overflows): the book's lighting does
+// not depend on their length.
+Scene parse_scene(const std::string& json_text, const std::string& name, const SceneLimits& limits = {},
+                  const SceneOverrides& overrides = {});
 // The same, read from a stream in 64 KiB chunks: more than limits.bytes is a
 // UserError ("<name>: scene file is larger than ..."), and so is a read error.
-Scene parse_scene(std::istream& in, const std::string& name, const SceneLimits& limits = {});
+Scene parse_scene(std::istream& in, const std::string& name, const SceneLimits& limits = {},
+                  const SceneOverrides& overrides = {});
 // Reads a file (or FIFO, or device) and parses it as it reads; a
 // missing/unreadable/oversized file is a UserError.
-Scene load_scene(const std::string& path, const SceneLimits& limits = {});
+Scene load_scene(const std::string& path, const SceneLimits& limits = {}, const SceneOverrides& overrides = {});
+// Reads a scene file as load_scene does but goes on after a problem: each
+// problem (the message load_scene would throw for it) goes to `problem`, and
+// the count is returned (0: the scene is valid). Only malformed JSON, and a
+// file that cannot be read, end the reading early.
+size_t validate_scene(const std::string& path, const std::function<void(const std::string&)>& problem,
+                      const SceneLimits& limits = {}, const SceneOverrides& overrides = {});
 // Serializes a scene back to JSON text (used by generated test suites).
 // Pretty: two-space indents; compact: no white space (large scenes).
 enum class JsonStyle { Pretty, Compact };

@@ -28,6 +28,12 @@ struct Cancelled : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Bad input whose problems the command has printed already, one line each
+// (`clrt validate`): exit status 2, and no line more.
+struct ProblemsReported : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // Exit statuses, in one place (docs/guide/errors.md).
 constexpr int kExitOk = 0, kExitCheckFailed = 1, kExitBadInput = 2, kExitInternalError = 3;
 

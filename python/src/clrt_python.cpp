@@ -674,7 +674,7 @@ py::object sweep(const py::object& scene_in, int width, int height, const py::kw
     RenderSettings render = o.settings();
     render.cancel = cancel;
     const auto devs = select_devices(devices.empty() ? o.device.device : devices);
-    return json_text(sweep_json(run_sweep(fitted, devs, render, settings), scene.name));
+    return json_text(sweep_json(run_sweep(fitted, devs, render, settings), scene.name, overrides_json({})));
   });
   return py::module_::import("json").attr("loads")(text);
 }
@@ -724,7 +724,7 @@ py::object accuracy(const py::object& scenes_in, int width, int height, const py
       if (cancel()) throw Cancelled("accuracy cancelled");
     };
     const DeviceInfo dev = a.device.one();
-    return accuracy_json(measure_accuracy(named, dev, settings), settings, dev.name);
+    return accuracy_json(measure_accuracy(named, dev, settings), settings, dev.name, {});
   });
   return py::module_::import("json").attr("loads")(text);
 }

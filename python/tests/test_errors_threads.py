@@ -119,7 +119,14 @@ def interrupt_after(seconds):
 
 
 def test_ctrl_c_stops_a_render_soon(device):
-    r = clrt.Renderer(DEMO, 1200, 1200, device=device, spp=8)  # (5 s on 2 cores of a CPU)
+    # Uninterrupted, r's frame takes 10 s on 2 idle CPU cores (longer when
+    # the machine is shared, as under ctest -j2). "Soon" is a bound of 2 s
+    # after the signal: bands of about 250 ms are the points where a render
+    # can stop, and a loaded machine stretches a band several times (CI saw
+    # 1.2 s with ctest -j2). A render that ignored the signal would take the
+    # whole 10 s and fail the bound.
+    r = clrt.Renderer(DEMO, 1200, 1200, device=device, spp=16)
+    soon = 2.0
     small = clrt.Renderer(DEMO, 64, 64, device=device, spp=8)
     before = small.render(depth=6)
     r.prepare(depth=6)  # (the program built, or loaded from the cache)
@@ -128,15 +135,14 @@ def test_ctrl_c_stops_a_render_soon(device):
     with pytest.raises(KeyboardInterrupt):
         r.render(depth=6)
     stopped = time.perf_counter() - t0
-    # (Bands of about 250 ms when a render can be stopped.)
-    assert stopped < 0.3 + 1.0, "the render stopped %.2f s after the signal" % (stopped - 0.3)
+    assert stopped < 0.3 + soon, "the render stopped %.2f s after the signal" % (stopped - 0.3)
     # Renderers still work, and render as before; the stopped one stops again.
     assert np.array_equal(small.render(depth=6), before)
     interrupt_after(0.1)
     t0 = time.perf_counter()
     with pytest.raises(KeyboardInterrupt):
         r.render(depth=6)
-    assert time.perf_counter() - t0 < 0.1 + 1.0
+    assert time.perf_counter() - t0 < 0.1 + soon
 
 
 def test_ctrl_c_stops_the_reference_soon():
@@ -144,4 +150,5 @@ def test_ctrl_c_stops_the_reference_soon():
     t0 = time.perf_counter()
     with pytest.raises(KeyboardInterrupt):
         clrt.reference(DEMO, 1200, 1200, spp=3, depth=5)
-    assert time.perf_counter() - t0 < 0.3 + 1.0
+    # (The same bound as the OpenCL render's above, for the same reasons.)
+    assert time.perf_counter() - t0 < 0.3 + 2.0

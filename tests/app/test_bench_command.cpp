@@ -29,10 +29,11 @@ TEST_CASE("clrt bench --json reports the documented keys", "[cli][bench][opencl]
   // against the host's wait (launch_timing.hpp: under 1% of a wait >= 1 ms;
   // at 40x30 a 1.2 ms wait for a 10 us kernel did, under ASan in CI).
   auto r = clrt_test::run_clrt({"bench", clrt_test::source_path("scenes/cgfs-demo.json"), "--width", "320", "--height",
-                                "240", "--depth", "1", "--repeat", "2", "--json"});
+                                "240", "--depth", "1", "--repeat", "2", "--json", "-D", "spheres.1.specular=10"});
   INFO(r.err);
   REQUIRE(r.status == 0);
   auto j = nlohmann::json::parse(r.out);
+  CHECK(j["overrides"] == nlohmann::json::parse(R"({"spheres.1.specular": 10})"));
   for (const char* k : {"kernel_ms_median",
                         "kernel_ms_min",
                         "kernel_ms_max",

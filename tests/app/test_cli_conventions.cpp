@@ -38,8 +38,8 @@ void check_one_error(const RunResult& r, const std::string& needle) {
   CHECK_THAT(r.err, Contains(needle));
 }
 
-const std::vector<std::string> kCommands = {"devices", "render",   "compare",   "bench",    "sweep",
-                                            "scaling", "accuracy", "stability", "generate", "cache"};
+const std::vector<std::string> kCommands = {"devices",   "render",   "compare", "bench",   "sweep",   "scaling",
+                                            "accuracy", "stability", "generate", "cache", "validate"};
 
 // The long options `clrt COMMAND --help` lists (COMMAND: words, "cache warm").
 std::set<std::string> help_options(const std::string& command) {
@@ -52,7 +52,7 @@ std::set<std::string> help_options(const std::string& command) {
   std::set<std::string> out;
   std::istringstream in(r.out);
   std::string line;
-  const std::regex option(R"(^  (?:(-[a-z]),)?(--[a-z0-9-]+))");
+  const std::regex option(R"(^  (?:(-[a-zA-Z]),)?(--[a-z0-9-]+))");
   std::smatch m;
   while (std::getline(in, line)) {
     if (!std::regex_search(line, m, option)) continue;

@@ -18,8 +18,8 @@ using clrt_test::TempDir;
 
 namespace {
 
-const std::vector<std::string> kCommands = {"devices", "render",   "compare",   "bench",    "sweep",
-                                            "scaling", "accuracy", "stability", "generate", "cache"};
+const std::vector<std::string> kCommands = {"devices",   "render",   "compare", "bench",   "sweep",   "scaling",
+                                            "accuracy", "stability", "generate", "cache", "validate"};
 
 std::string demo() {
   return clrt_test::source_path("scenes/cgfs-demo.json");

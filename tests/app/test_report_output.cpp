@@ -184,11 +184,13 @@ TEST_CASE("clrt accuracy --json and --csv: header, metric names, strict CSV", "[
   clrt_test::TempDir dir;
   auto r = clrt_test::run_clrt({"accuracy", clrt_test::source_path("scenes/cgfs-demo.json"), "--width", "16",
                                 "--height", "12", "--repeat", "1", "--variants", "robust,naive", "--json", "--csv",
-                                dir / "a,\"odd\".csv"});
+                                dir / "a,\"odd\".csv", "-D", "spheres.0.reflective=0.5", "-D", "epsilon=0.01"});
   INFO(r.err);
   REQUIRE(r.status == 0);
   check_header_json(r.out, true);
   auto j = nlohmann::ordered_json::parse(r.out);
+  // The -D, in the order given.
+  CHECK(j["overrides"].dump() == R"({"spheres.0.reflective":0.5,"epsilon":0.01})");
   REQUIRE(j["rows"].size() == 2);
   for (const auto& k : kMetricKeys) CHECK(j["rows"][0].contains(k));
   const Rows rows = parse_csv_strict(clrt_test::slurp(dir / "a,\"odd\".csv"));
@@ -203,11 +205,13 @@ TEST_CASE("clrt sweep --json parses and --csv parses strictly, with the same met
           "[cli][sweep][opencl][output]") {
   clrt_test::TempDir dir;
   auto r = clrt_test::run_clrt({"sweep", clrt_test::source_path("scenes/cgfs-demo.json"), "--depths", "0:1", "--width",
-                                "16", "--height", "12", "--repeat", "1", "--json", "--csv", dir / "s.csv"});
+                                "16", "--height", "12", "--repeat", "1", "--json", "--csv", dir / "s.csv", "--set",
+                                "camera.position=[0, 0.5, 0]"});
   INFO(r.err);
   REQUIRE(r.status == 0);
   check_header_json(r.out, true);  // stdout is the JSON object alone
   auto j = nlohmann::json::parse(r.out);
+  CHECK(j["overrides"] == nlohmann::json::parse(R"({"camera.position": [0, 0.5, 0]})"));
   REQUIRE(j["rows"].size() == 2);
   CHECK(j["rows"][1]["depth"] == 1);
   CHECK(j["rows"][0]["rays_primary"] == 16 * 12);
@@ -259,6 +263,7 @@ TEST_CASE("clrt compare --json: header first, the metric names, null PSNR for id
   check_header_json(r.out, false);
   auto j = nlohmann::json::parse(r.out);
   for (const auto& k : kMetricKeys) CHECK(j.contains(k));
+  CHECK(j["overrides"] == nlohmann::json::object());  // no -D
   CHECK(j["pixels_differ"] == 0);
   CHECK(j["psnr_8bit_db"].is_null());
   CHECK(j["hit_flip_pixels"].is_null());  // an image file has no hit data
