@@ -224,7 +224,7 @@ int depth_arg(const py::handle& v) {
 }
 
 // The options each call takes (besides its positional ones).
-const std::vector<std::string> kImageArgs = {"depth", "spp", "adaptive", "subsample", "aspect"};
+const std::vector<std::string> kImageArgs = {"depth", "spp", "adaptive", "subsample", "aspect", "ray_cut", "ray_budget"};
 const std::vector<std::string> kDeviceKernelArgs = {"device", "precision", "lanes", "accel", "specialize", "ftz",
                                                     "cache", "verbose", "kernel_dir", "cl_options"};
 const std::vector<std::string> kLaunchArgs = {"local", "band_rows", "max_launch_ms"};
@@ -269,6 +269,12 @@ void apply_options(RenderOptions& o, const py::kwargs& kwargs, const std::vector
       o.image.aspect = none ? "" : str_arg(value, name);
       if (!o.image.aspect.empty() && o.image.aspect != "viewport" && o.image.aspect != "image")
         throw UserError("--aspect: expected viewport or image (got \"" + o.image.aspect + "\")");
+    } else if (name == "ray_cut") {
+      o.image.no_ray_cut = !bool_arg(value, name);
+    } else if (name == "ray_budget") {
+      o.image.ray_budget = none ? kRayBudget : float_arg(value, name);
+      if (!(o.image.ray_budget >= 1 && o.image.ray_budget <= 1e300))
+        throw UserError("--ray-budget must be in [1, 1e300] (got " + std::string(py::str(value)) + ")");
     } else if (name == "device") {
       o.device.device = none ? "" : py::isinstance<py::int_>(value) ? std::to_string(int_arg(value, name))
                                                                      : str_arg(value, name);

@@ -69,6 +69,20 @@ def test_options_reach_the_kernel(demo, run, device, tmp_path):
     assert img.info["spp"] == 2 and img.info["precision"] == "naive"
 
 
+def test_ray_cut_and_budget_are_render_s(demo, run, device, tmp_path):
+    # Without the weight cut-off the image is --no-ray-cut's, file for file.
+    img = clrt.Renderer(demo, 64, 64, device=device, ray_cut=False).render(depth=5)
+    out = str(tmp_path / "c.pfm")
+    run(["render", DEMO, "-o", out, "--quiet", "--width", "64", "--height", "64", "--depth", "5", "--no-ray-cut"],
+        with_device=True)
+    assert np.array_equal(np.asarray(img), read_pfm(out))
+    # A budget below the frame's worst case is refused before any work, with render's message.
+    with pytest.raises(clrt.Error, match="--ray-budget"):
+        clrt.Renderer(demo, 64, 64, device=device, ray_budget=1).render(depth=5)
+    with pytest.raises(clrt.Error, match="--ray-budget must be in"):
+        clrt.Renderer(demo, 64, 64, device=device, ray_budget=0.5)
+
+
 def test_reference_equals_the_cli_reference_engine(demo, run, tmp_path):
     ref = clrt.reference(demo, W, H)
     assert ref.info["device"] == "host (scalar double)"
