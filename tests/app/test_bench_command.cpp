@@ -9,6 +9,9 @@
 #include "cli_run.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_bench_command {
+
 namespace {
 
 // The field of `row` in the column `name` of `header` ("?" when there is
@@ -195,3 +198,5 @@ TEST_CASE("clrt scaling rejects bad counts before measuring", "[cli]") {
     CHECK(r.err.find("clrt: error: --spheres") == 0);
   }
 }
+
+}  // namespace test_bench_command

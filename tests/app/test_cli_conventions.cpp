@@ -13,6 +13,9 @@
 #include "cli_run.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_cli_conventions {
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using clrt_test::run_clrt;
@@ -263,3 +266,5 @@ TEST_CASE("the bash completion knows every subcommand and option", "[cli]") {
     CHECK(complete(c + " -") == help_options(c));
   }
 }
+
+}  // namespace test_cli_conventions

@@ -7,6 +7,9 @@
 #include "cli_run.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_cli_errors {
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using clrt_test::run_clrt;
@@ -326,3 +329,5 @@ TEST_CASE("kernel build failure prints the build log, then one error line", "[cl
   check_bad_render({"--kernel-dir", missing}, out, {missing + "/trace.cl: cannot open kernel file"});
   CHECK_FALSE(fs::exists(out));
 }
+
+}  // namespace test_cli_errors

@@ -31,6 +31,9 @@
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_hardening {
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using clrt_test::run_clrt;
@@ -823,3 +826,5 @@ TEST_CASE("a frame over the ray budget is refused before the work", "[cli][harde
   CHECK(r.status == 0);
   CHECK(dir.entries().size() == 3);
 }
+
+}  // namespace test_hardening

@@ -15,6 +15,9 @@
 #include "util/build_features.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_lean_build {
+
 using clrt_test::run_clrt;
 using clrt_test::source_path;
 
@@ -153,3 +156,5 @@ TEST_CASE("a lean clrt bench runs without the comparison tracers and says so", "
   CHECK(r.status == 0);
   CHECK(r.out.find("CLRT_LEAN=ON") != std::string::npos);
 }
+
+}  // namespace test_lean_build

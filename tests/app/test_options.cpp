@@ -6,6 +6,9 @@
 #include "clrt_layout.h"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_options {
+
 using namespace clrt;
 
 TEST_CASE("local sizes WxH parse, anything else is bad input", "[options]") {
@@ -99,3 +102,5 @@ TEST_CASE("sweep depth ranges: A:B or N within [0, CLRT_MAX_DEPTH]", "[options]"
     CHECK_THROWS_AS(parse_depth_range(bad, from, to), UserError);
   }
 }
+
+}  // namespace test_options

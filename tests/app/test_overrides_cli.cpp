@@ -9,6 +9,9 @@
 #include "image/image_file.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_overrides_cli {
+
 using Catch::Matchers::Contains;
 using clrt_test::run_clrt;
 using clrt_test::RunResult;
@@ -109,3 +112,5 @@ TEST_CASE("an image rendered with -D records the overrides", "[cli][full-build]"
               .status == 0);
   CHECK(clrt::read_metadata(dir / "n.png", {"clrt:overrides"}).empty());
 }
+
+}  // namespace test_overrides_cli

@@ -10,6 +10,9 @@
 #include "cli_run.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_plot_reports {
+
 using namespace clrt;
 
 namespace {
@@ -114,3 +117,5 @@ TEST_CASE("a --plot with an unknown extension fails before measuring", "[plot][c
   }
   CHECK(dir.entries().empty());
 }
+
+}  // namespace test_plot_reports

@@ -10,6 +10,9 @@
 #include "cli_run.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_progress_cli {
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using clrt_test::run_clrt;
@@ -133,3 +136,5 @@ TEST_CASE("progress moves during a long frame on one device", "[cli][progress][o
   }
   CHECK(between >= 1);
 }
+
+}  // namespace test_progress_cli

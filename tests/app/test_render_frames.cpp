@@ -11,6 +11,9 @@
 #include "util/error.hpp"
 #include "util/frame_pattern.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_render_frames {
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using clrt_test::run_clrt;
@@ -175,3 +178,5 @@ TEST_CASE("several scenes: bad input is refused before any frame, and no file is
   }
   CHECK(dir.entries().empty());
 }
+
+}  // namespace test_render_frames

@@ -17,6 +17,9 @@
 #include "test_util.hpp"
 #include "util/csv.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_report_output {
+
 namespace {
 
 using Rows = std::vector<std::vector<std::string>>;
@@ -268,3 +271,5 @@ TEST_CASE("clrt compare --json: header first, the metric names, null PSNR for id
   CHECK(j["psnr_8bit_db"].is_null());
   CHECK(j["hit_flip_pixels"].is_null());  // an image file has no hit data
 }
+
+}  // namespace test_report_output

@@ -9,6 +9,9 @@
 #include "scene/scene_schema.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_validate_command {
+
 using Catch::Matchers::Contains;
 using clrt_test::run_clrt;
 using clrt_test::RunResult;
@@ -68,3 +71,5 @@ TEST_CASE("clrt validate --schema prints the committed docs/reference/scene.sche
   CHECK(schema["$defs"]["light"]["allOf"].size() == 3);
   CHECK(run_clrt({"validate", "--schema", clrt_test::source_path("scenes/glass.json")}).status == 2);
 }
+
+}  // namespace test_validate_command

@@ -6,6 +6,9 @@
 #include "util/error.hpp"
 #include "util/log.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_device_spec {
+
 using namespace clrt;
 
 namespace {
@@ -131,3 +134,5 @@ TEST_CASE("a name that matches several devices says which it took, once", "[devi
     CHECK(logged([&] { pick_devices(kTwoCpus, quiet); }).empty());
   }
 }
+
+}  // namespace test_device_spec

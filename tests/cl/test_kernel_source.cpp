@@ -12,6 +12,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_kernel_source {
+
 using namespace clrt;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -136,3 +139,5 @@ TEST_CASE("a kernel directory copied from kernels/ expands like the embedded fil
   CHECK(edited != load_kernel_source("trace.cl"));
   CHECK(count(edited, "/* edited */") == 1);
 }
+
+}  // namespace test_kernel_source

@@ -15,6 +15,9 @@
 #include "cli_run.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_program_cache {
+
 using namespace clrt;
 
 namespace {
@@ -433,3 +436,5 @@ TEST_CASE("cache info says when the cache cannot be created", "[cli][cache][hard
   CHECK(c.status == 2);
   CHECK_THAT(c.err, Catch::StartsWith("clrt: error: "));
 }
+
+}  // namespace test_program_cache

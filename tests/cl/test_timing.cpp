@@ -8,6 +8,9 @@
 #include "cli_run.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_timing {
+
 using namespace clrt;
 
 TEST_CASE("plausible event times are kept", "[timing]") {
@@ -88,3 +91,5 @@ TEST_CASE("bench on rusticl: plausible times, and it says which clock", "[timing
   REQUIRE(text.status == 0);
   if (source == "host") CHECK(text.out.find("host wall clock") != std::string::npos);
 }
+
+}  // namespace test_timing

@@ -16,6 +16,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_frame_farm {
+
 using namespace clrt;
 using namespace clrt::dist;
 
@@ -148,3 +151,5 @@ TEST_CASE("bad input on rank 0 reaches every rank before any work", "[dist][mpi]
   const Bytes got = share_from_root(comm, [&] { return scene; });
   CHECK(got == scene);
 }
+
+}  // namespace test_frame_farm

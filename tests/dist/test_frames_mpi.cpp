@@ -28,6 +28,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_frames_mpi {
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using clrt_test::RunResult;
@@ -281,3 +284,5 @@ TEST_CASE("a frame rank 0 cannot write ends every rank with that error", "[frame
     CHECK_THROWS_AS(clrt::dist::farm_frames(comm, scenes, qs, std::ref(render), done, nullptr), clrt::dist::JobAborted);
   }
 }
+
+}  // namespace test_frames_mpi

@@ -18,6 +18,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_grid {
+
 using namespace clrt;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -487,3 +490,5 @@ TEST_CASE("mpirun sweep and accuracy: a failure is one error line, exit 2, and n
     CHECK(dir.entries().empty());  // no CSV
   }
 }
+
+}  // namespace test_grid

@@ -4,6 +4,9 @@
 
 #include "../../bench/mpi_model.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_mpi_bench_model {
+
 using namespace clrt::model;
 
 namespace {
@@ -85,3 +88,5 @@ TEST_CASE("farm model: a slow link into rank 0 makes the farm slower than one no
   CHECK(p.root_bound);
   CHECK(p.speedup < 1);
 }
+
+}  // namespace test_mpi_bench_model

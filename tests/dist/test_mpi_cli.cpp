@@ -18,6 +18,9 @@
 #include "mpi_run.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_mpi_cli {
+
 namespace fs = std::filesystem;
 using clrt_test::have_mpirun;
 using clrt_test::run_command_line;
@@ -282,3 +285,5 @@ TEST_CASE("mpirun clrt cache warm: every rank warms its node's cache, rank 0 rep
   INFO(render.err);
   CHECK_THAT(render.err, Catch::Contains("program loaded from cache"));
 }
+
+}  // namespace test_mpi_cli

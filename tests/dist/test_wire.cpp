@@ -10,6 +10,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_wire {
+
 using namespace clrt;
 using namespace clrt::dist;
 
@@ -93,3 +96,5 @@ TEST_CASE("rows of every frame format cross the wire into their place", "[dist]"
     CHECK_THROWS_AS(decode_rows(cut, dst, y0, y1), DeviceError);
   }
 }
+
+}  // namespace test_wire

@@ -12,6 +12,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_accuracy {
+
 using namespace clrt;
 
 TEST_CASE("accuracy rows on the demo scene (200x200)", "[accuracy][opencl][slow]") {
@@ -116,3 +119,5 @@ TEST_CASE("fp64 is unsupported on a device without cl_khr_fp64, the rest are sup
   with_fp64.fp64 = true;
   CHECK(unsupported_reason(Precision::Fp64, with_fp64).empty());
 }
+
+}  // namespace test_accuracy

@@ -8,6 +8,9 @@
 #include "eval/compare.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_compare_gate {
+
 using namespace clrt;
 using clrt_test::run_clrt;
 using clrt_test::source_path;
@@ -121,3 +124,5 @@ TEST_CASE("devices --check exits 1 when a device fails its self-test", "[cli][co
   CHECK(r.out.find("FAIL") != std::string::npos);
   CHECK(r.err.find("clrt: check failed: ") != std::string::npos);
 }
+
+}  // namespace test_compare_gate

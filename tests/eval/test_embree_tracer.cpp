@@ -21,6 +21,9 @@
 #include "scene/random_scene.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_embree_tracer {
+
 namespace {
 
 using clrt_bench::EmbreeSpheres;
@@ -110,3 +113,5 @@ TEST_CASE("compare_rgb clamps and rounds like every output, then counts pixels",
   CHECK(clrt::compare_rgb(a, a).differ == 0);
   CHECK(clrt::compare_rgb(a, {1, 2, 3}).differ == 1);  // sizes differ: nothing agrees
 }
+
+}  // namespace test_embree_tracer

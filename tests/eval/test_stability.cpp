@@ -14,6 +14,9 @@
 #include "render/kernel_features.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_stability {
+
 using namespace clrt;
 
 TEST_CASE("stability verdict: 0.05% of pixels off by > 1 and no NaN", "[stability]") {
@@ -252,3 +255,5 @@ TEST_CASE("robust: every case gives the generic kernel's image when specialized"
   CHECK(all > 0);    // distant sphere 1e4 and beyond
   CHECK(mixed > 0);  // the demo's floor with its unit spheres
 }
+
+}  // namespace test_stability

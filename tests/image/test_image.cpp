@@ -5,6 +5,9 @@
 
 #include "image/image.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_image {
+
 using namespace clrt;
 
 TEST_CASE("8-bit values round to nearest, ties to even, like a canvas", "[image]") {
@@ -61,3 +64,5 @@ TEST_CASE("the float files' scale keeps the canvas value of the kernel's float: 
   CHECK(img.rgb.empty());
   CHECK(to_u8(img) == std::vector<uint8_t>{0, 2, 255, 0, 127, 128});
 }
+
+}  // namespace test_image

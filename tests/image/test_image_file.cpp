@@ -16,6 +16,9 @@
 #include "image/image_file.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_image_file {
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using clrt_test::run_clrt;
@@ -257,3 +260,5 @@ TEST_CASE("'-o -' writes the image alone to stdout, in the format --format names
     CHECK(clrt_test::slurp(dir / "x.img").compare(1, 3, "PNG") == 0);
   }
 }
+
+}  // namespace test_image_file

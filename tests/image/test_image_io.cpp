@@ -9,6 +9,9 @@
 #include "image/image_file.hpp"
 #include "image/image_io.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_image_io {
+
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using clrt_test::run_clrt;
@@ -108,3 +111,5 @@ TEST_CASE("every format checked without OpenImageIO is one it writes", "[imageio
   }
   CHECK_FALSE(io.can_write("x.notaformat"));
 }
+
+}  // namespace test_image_io

@@ -11,6 +11,9 @@
 #include "image/plot.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_plot {
+
 using namespace clrt;
 
 namespace {
@@ -109,3 +112,5 @@ TEST_CASE("a name has one colour whatever else is plotted, markers differ", "[pl
   CHECK(markers.size() == plot_marker_count());
   CHECK(std::string(plot_marker(plot_marker_count())) == plot_marker(0));
 }
+
+}  // namespace test_plot

@@ -9,6 +9,9 @@
 #include "scene/scene_json.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_reference {
+
 using namespace clrt;
 
 namespace {
@@ -158,3 +161,5 @@ TEST_CASE("supersampling: the classification is the first sample's", "[reference
   CHECK(img.hit[row + EdgeScene::col(-EdgeScene::kEdgeX)] == -1);
   CHECK(px(img, EdgeScene::col(-EdgeScene::kEdgeX), EdgeScene::row(), 0) > 0);
 }
+
+}  // namespace test_reference

@@ -6,6 +6,9 @@
 
 #include "render/band_scheduler.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_band_scheduler {
+
 using namespace clrt;
 
 namespace {
@@ -92,3 +95,5 @@ TEST_CASE("a queue over a range of rows hands out exactly that range", "[band]")
   }
   CHECK(expect == 137);
 }
+
+}  // namespace test_band_scheduler

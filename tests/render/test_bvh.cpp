@@ -15,6 +15,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_bvh {
+
 using namespace clrt;
 
 namespace {
@@ -278,3 +281,5 @@ TEST_CASE("the ray counters count the spheres a walk tests", "[opencl][bvh][rays
   CHECK(with_bvh.rays.sphere_tests > 0);
   CHECK(with_bvh.rays.sphere_tests * 10 < without.rays.sphere_tests);
 }
+
+}  // namespace test_bvh

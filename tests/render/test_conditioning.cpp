@@ -13,6 +13,9 @@
 #include "render/scene_buffers.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_conditioning {
+
 using namespace clrt;
 
 namespace {
@@ -169,3 +172,5 @@ TEST_CASE("the decision reaches the sphere buffer and the robust build options",
     CHECK_FALSE(has_prefix(build_option_list(other, kernel_features(units, 3), true), "-DCLRT_COMPENSATED"));
   }
 }
+
+}  // namespace test_conditioning

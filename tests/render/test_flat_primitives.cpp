@@ -13,6 +13,9 @@
 #include "scene/scene_json.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_flat_primitives {
+
 using namespace clrt;
 
 namespace {
@@ -166,3 +169,5 @@ TEST_CASE("an OBJ mesh through the hierarchy: the brute-force image and the refe
   INFO("off by > 1: " << c.off_by_gt1 << ", hit flips " << c.hit_flips);
   CHECK(within_tolerance(c));
 }
+
+}  // namespace test_flat_primitives

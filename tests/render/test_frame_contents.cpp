@@ -12,6 +12,9 @@
 #include "util/error.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_frame_contents {
+
 using namespace clrt;
 
 namespace {
@@ -237,3 +240,5 @@ TEST_CASE("bands in flight two at a time (read path): the same image and ray cou
   CHECK(b.stats().rays.total() == a.stats().rays.total());
   CHECK(b.stats().rays.sphere_tests == a.stats().rays.sphere_tests);
 }
+
+}  // namespace test_frame_contents

@@ -14,6 +14,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_kernel_features {
+
 using namespace clrt;
 using Catch::Matchers::Contains;
 
@@ -372,3 +375,5 @@ TEST_CASE("scene_lanes: one ray per work-item for many small spheres through the
   s.spheres.push_back(small);
   CHECK(scene_lanes(cfg, gpu, s, 1000, true) == 1);
 }
+
+}  // namespace test_kernel_features

@@ -9,6 +9,9 @@
 #include "test_util.hpp"
 #include "util/build_features.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_multidevice {
+
 using namespace clrt;
 
 namespace {
@@ -114,3 +117,5 @@ TEST_CASE("mapped and read results, fresh and reused images: the same bytes", "[
     CHECK(reused.shadowed == want.shadowed);
   }
 }
+
+}  // namespace test_multidevice

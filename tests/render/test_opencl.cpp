@@ -14,6 +14,9 @@
 #include "scene/scene_json.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_opencl {
+
 using namespace clrt;
 
 using clrt_test::shipped_scenes;
@@ -114,3 +117,5 @@ TEST_CASE("tiled rendering equals the single-launch image", "[opencl]") {
   CHECK(a.hit == b.hit);
   CHECK(a.shadowed == b.shadowed);
 }
+
+}  // namespace test_opencl

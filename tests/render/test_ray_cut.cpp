@@ -15,6 +15,9 @@
 #include "scene/scene_json.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_ray_cut {
+
 using namespace clrt;
 
 namespace {
@@ -185,3 +188,5 @@ TEST_CASE("the kernel cuts the reference's rays: images agree, the rays stay wit
   CHECK(double(traced) <= bound);
   CHECK(bound < 1e-12 * std::ldexp(1.0, CLRT_MAX_DEPTH + 1) * double(pixels));
 }
+
+}  // namespace test_ray_cut

@@ -14,6 +14,9 @@
 #include "scene/scene_json.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_refraction {
+
 using namespace clrt;
 
 namespace {
@@ -229,3 +232,5 @@ TEST_CASE("ray counters count refracted rays", "[opencl][refraction][rays][slow]
     CHECK(stats.rays.sphere_tests == 2 * stats.rays.total());
   }
 }
+
+}  // namespace test_refraction

@@ -12,6 +12,9 @@
 #include "render/scene_buffers.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_scene_buffers {
+
 using namespace clrt;
 
 namespace {
@@ -134,3 +137,5 @@ TEST_CASE("the host's layout field list names every struct member once", "[buffe
   CHECK(std::string(std::prev(std::end(kLayoutFields))->type) == "clrt_bvh_node");
   CHECK(std::string(std::prev(std::end(kLayoutFields))->member) == "count");
 }
+
+}  // namespace test_scene_buffers

@@ -13,6 +13,9 @@
 #include "scene/scene_json.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_specialize {
+
 using namespace clrt;
 
 namespace {
@@ -166,3 +169,5 @@ TEST_CASE("ray counters match counts derived by hand", "[opencl][rays][slow]") {
     CHECK(c.sphere_tests == 2 * (c.primary + c.reflection + c.shadow));
   }
 }
+
+}  // namespace test_specialize

@@ -17,6 +17,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_subsampling {
+
 using namespace clrt;
 
 namespace {
@@ -259,3 +262,5 @@ TEST_CASE("subsampling is refused with supersampling and for unknown modes", "[s
   CHECK(unknown.status == 2);
   CHECK(unknown.one_line_error());
 }
+
+}  // namespace test_subsampling

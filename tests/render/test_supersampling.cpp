@@ -14,6 +14,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_supersampling {
+
 using namespace clrt;
 
 namespace {
@@ -213,3 +216,5 @@ TEST_CASE("adaptive supersampling traces 4 rays where the corners agree", "[open
     CHECK((r.stats().rays.primary - 4 * pixels) % (n * n - 4) == 0);  // whole pixels refined
   }
 }
+
+}  // namespace test_supersampling

@@ -17,6 +17,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_chapter5_scene {
+
 using namespace clrt;
 
 namespace {
@@ -265,3 +268,5 @@ TEST_CASE("mesh limits count the whole scene, and a file named twice is read onc
   CHECK_THAT(f.error_of_scene({"models/tri.obj", "models/tri2.obj"}, bytes),
              Catch::Contains("meshes[1].file: ") && Catch::Contains("mesh files total more than"));
 }
+
+}  // namespace test_chapter5_scene

@@ -15,6 +15,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_obj_mesh {
+
 using namespace clrt;
 
 namespace {
@@ -272,3 +275,5 @@ TEST_CASE("bad OBJ files and transforms are UserErrors naming the file", "[mesh]
     if (std::filesystem::exists("/dev/zero")) require_rejected("/dev/zero");
   }
 }
+
+}  // namespace test_obj_mesh

@@ -7,6 +7,9 @@
 #include "scene/random_scene.hpp"
 #include "scene/scene_json.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_random_scene {
+
 using namespace clrt;
 
 TEST_CASE("random scenes: N spheres plus the floor, the same for the same seed", "[scene][generate]") {
@@ -45,3 +48,5 @@ TEST_CASE("clrt generate writes a scene clrt reads, bad counts are bad input", "
   auto f = clrt_test::run_clrt({"generate", "--fill", "2", "-o", dir / "h.json"});
   CHECK(f.status == 2);
 }
+
+}  // namespace test_random_scene

@@ -12,6 +12,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_scene {
+
 using namespace clrt;
 
 TEST_CASE("demo scene parses with the book's values", "[scene]") {
@@ -343,3 +346,5 @@ TEST_CASE("sphere and light counts are limited", "[scene]") {
   limits.bytes = 10;
   CHECK_THROWS_WITH(parse_scene(R"({"spheres": []})", "s.json", limits), "s.json: scene file is larger than 10 bytes");
 }
+
+}  // namespace test_scene

@@ -10,6 +10,9 @@
 #include "scene/scene_keys.hpp"
 #include "test_util.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_scene_keys {
+
 using namespace clrt;
 
 namespace {
@@ -131,3 +134,5 @@ TEST_CASE("a key's member is the one its name says", "[scene]") {
   CHECK(s.lights[0].vec.z == 0.75);
   CHECK(value_json(*find_key(Ctx::Light, "direction"), &s.lights[0]) == nlohmann::json::parse("[0, 0, 3]"));
 }
+
+}  // namespace test_scene_keys

@@ -10,6 +10,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_scene_overrides {
+
 using namespace clrt;
 
 namespace {
@@ -151,3 +154,5 @@ TEST_CASE("each kind of bad -D is one message naming it", "[scene]") {
   // A -D that chose a light's type is named where the type makes a key unknown or missing.
   CHECK(error_of(demo, {"lights.0.type=\"point\""}) == R"(-D lights.0.type="point": lights[0]: point light needs "position")");
 }
+
+}  // namespace test_scene_overrides

@@ -9,6 +9,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_scene_validate {
+
 using clrt_test::TempDir;
 
 namespace {
@@ -91,3 +94,5 @@ TEST_CASE("validate's first problem is the reader's, for every file of the fuzz 
   CHECK(files > 1000);
   CHECK(invalid > 900);
 }
+
+}  // namespace test_scene_validate

@@ -10,6 +10,9 @@
 #include "test_util.hpp"
 #include "util/error.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_viewport {
+
 using namespace clrt;
 using Catch::Matchers::Contains;
 
@@ -82,3 +85,5 @@ TEST_CASE("clrt warns about non-square pixels, and --aspect image fits the viewp
   CHECK(bad.status == 2);
   CHECK(bad.one_line_error());
 }
+
+}  // namespace test_viewport

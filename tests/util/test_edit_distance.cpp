@@ -3,6 +3,9 @@
 
 #include "util/edit_distance.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_edit_distance {
+
 using clrt::closest_match;
 using clrt::edit_distance;
 
@@ -43,3 +46,5 @@ TEST_CASE("closest match: only near misses are suggested", "[util]") {
   CHECK(closest_match("rndrx", commands).empty());     // three
   CHECK(closest_match("rendr", {}).empty());
 }
+
+}  // namespace test_edit_distance

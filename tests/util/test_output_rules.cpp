@@ -14,6 +14,9 @@
 #include "util/log.hpp"
 #include "util/progress.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_output_rules {
+
 using namespace clrt;
 
 TEST_CASE("CSV fields are quoted only when they must be, quotes doubled", "[csv]") {
@@ -170,3 +173,5 @@ TEST_CASE("log messages go to the sink app/ sets, and back to stderr's default",
   CHECK(seen[0].second == "cannot write the program cache entry /x");
   CHECK(seen[1].first == LogLevel::Info);
 }
+
+}  // namespace test_output_rules

@@ -4,6 +4,9 @@
 
 #include "util/stats.hpp"
 
+// (clrt_tests is a unity build: each file's code is in a namespace of its own.)
+namespace test_stats {
+
 using namespace clrt;
 
 TEST_CASE("timing summaries: N, median, mean, sample sd, min, max", "[timing]") {
@@ -21,3 +24,5 @@ TEST_CASE("timing summaries: N, median, mean, sample sd, min, max", "[timing]") 
   CHECK(format_stats(summarize({1, 3}), "x") == "median 2.00x, mean 2.00 ± 1.41, min 1.00, max 3.00 (N=2)");
   CHECK(summarize({}).n == 0);
 }
+
+}  // namespace test_stats
