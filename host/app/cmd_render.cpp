@@ -71,6 +71,21 @@ void render_across_ranks(const RenderOptions& o, const std::string& out, const s
   print_rank_shares(stats.ranks, "tiles", report);
 }
 
+// One frame's line, as it is written: where it went, its scene, and its
+// times (the kernel's and the build's on a device, or the reference's).
+void print_frame_line(const RenderOptions& o, const std::string& path, const std::string& scene_path, int depth,
+                      const std::string& device, const dist::FrameRun& run) {
+  clear_progress_line();
+  if (o.engine == "opencl")
+    std::printf("%s: %s, %dx%d depth %d on %s: kernel %.2f ms%s, build %.1f ms%s, frame %.1f ms\n", path.c_str(),
+                scene_path.c_str(), o.image.width, o.image.height, depth, device.c_str(), run.kernel_ms,
+                time_source_note(run.host_timed_launches, run.launches).c_str(), run.build_ms,
+                run.build_cached ? " (cached)" : "", run.ms);
+  else
+    std::printf("%s: %s, %dx%d depth %d with the reference renderer: %.1f ms\n", path.c_str(), scene_path.c_str(),
+                o.image.width, o.image.height, depth, run.ms);
+}
+
 // `clrt render A.json B.json ... -o frame_####.png`: one frame per scene,
 // frame i written to OUT's pattern with i. Every output name is checked and
 // every scene loaded before the first frame renders (on rank 0 under
@@ -157,15 +172,7 @@ void render_frames(const RenderOptions& o, const std::vector<std::string>& paths
     dist::stop_if_orphaned();  // a job that was ended writes nothing
     write_output(paths[i], file);
     frame_ms.push_back(run.ms);
-    clear_progress_line();
-    if (o.engine == "opencl")
-      std::printf("%s: %s, %dx%d depth %d on %s: kernel %.2f ms%s, build %.1f ms%s, frame %.1f ms\n", paths[i].c_str(),
-                  o.scene_paths[i].c_str(), o.image.width, o.image.height, depth, device.c_str(), run.kernel_ms,
-                  time_source_note(run.host_timed_launches, run.launches).c_str(), run.build_ms,
-                  run.build_cached ? " (cached)" : "", run.ms);
-    else
-      std::printf("%s: %s, %dx%d depth %d with the reference renderer: %.1f ms\n", paths[i].c_str(),
-                  o.scene_paths[i].c_str(), o.image.width, o.image.height, depth, run.ms);
+    print_frame_line(o, paths[i], o.scene_paths[i], depth, device, run);
   };
   dist::FrameQueueSettings queue;
   queue.width = o.image.width, queue.height = o.image.height, queue.contents = settings.kernel.output;

@@ -87,6 +87,27 @@ void expect_done(const Reader& r, const char* what) {
   if (!r.done()) throw DeviceError(std::string("MPI: ") + what + " message with bytes left over");
 }
 
+namespace {
+
+// A value as a message of its own: written by `put`; read by `get`, and then
+// nothing may be left (`what` names it in the error).
+template <class T>
+Bytes encode_whole(void (*put)(Writer&, const T&), const T& value) {
+  Writer w;
+  put(w, value);
+  return std::move(w.bytes);
+}
+
+template <class T>
+T decode_whole(T (*get)(Reader&), const Bytes& b, const char* what) {
+  Reader r(b);
+  T value = get(r);
+  expect_done(r, what);
+  return value;
+}
+
+}  // namespace
+
 void put_image(Writer& w, const Image& img) {
   w.put<int32_t>(img.width), w.put<int32_t>(img.height);
   w.put<int32_t>(int32_t(img.contents.pixels)), w.put<uint8_t>(img.contents.classes);
@@ -120,16 +141,11 @@ Image get_image(Reader& r) {
 }
 
 Bytes encode_image(const Image& img) {
-  Writer w;
-  put_image(w, img);
-  return std::move(w.bytes);
+  return encode_whole(put_image, img);
 }
 
 Image decode_image(const Bytes& b) {
-  Reader r(b);
-  Image img = get_image(r);
-  expect_done(r, "an image");
-  return img;
+  return decode_whole(get_image, b, "an image");
 }
 
 void put_stats(Writer& w, const Stats& s) {
@@ -248,16 +264,11 @@ SweepRow get_sweep_row(Reader& r) {
 }
 
 Bytes encode_sweep_row(const SweepRow& row) {
-  Writer w;
-  put_sweep_row(w, row);
-  return std::move(w.bytes);
+  return encode_whole(put_sweep_row, row);
 }
 
 SweepRow decode_sweep_row(const Bytes& b) {
-  Reader r(b);
-  SweepRow row = get_sweep_row(r);
-  expect_done(r, "a sweep row");
-  return row;
+  return decode_whole(get_sweep_row, b, "a sweep row");
 }
 
 void put_accuracy_row(Writer& w, const AccuracyRow& row) {
@@ -280,16 +291,11 @@ AccuracyRow get_accuracy_row(Reader& r) {
 }
 
 Bytes encode_accuracy_row(const AccuracyRow& row) {
-  Writer w;
-  put_accuracy_row(w, row);
-  return std::move(w.bytes);
+  return encode_whole(put_accuracy_row, row);
 }
 
 AccuracyRow decode_accuracy_row(const Bytes& b) {
-  Reader r(b);
-  AccuracyRow row = get_accuracy_row(r);
-  expect_done(r, "an accuracy row");
-  return row;
+  return decode_whole(get_accuracy_row, b, "an accuracy row");
 }
 
 }  // namespace clrt::dist

@@ -11,30 +11,12 @@
 #include <vector>
 
 #include "dist/communicator.hpp"
+#include "dist/farm.hpp"
 #include "image/image.hpp"
 #include "render/renderer.hpp"
 #include "util/progress.hpp"
 
 namespace clrt::dist {
-
-// One tile a rank rendered: its rows and the wall time it took there.
-struct TileTime {
-  int y0 = 0, y1 = 0;
-  double ms = 0;
-};
-
-// What one rank did in a frame (or a run of frames).
-struct RankShare {
-  int rank = 0;
-  std::string host;
-  std::string devices;  // its devices' names
-  int units = 0;        // tiles (or frames, or grid cells) it rendered
-  long long rows = 0;   // image rows it rendered
-  double busy_ms = 0;   // wall time spent rendering them
-  double kernel_ms = 0;
-  double send_ms = 0;           // farm_frame, ranks other than 0: encoding and sending its rows
-  std::vector<TileTime> tiles;  // farm_frame: each tile it rendered, in order
-};
 
 struct FarmSettings {
   int width = 0, height = 0;
@@ -67,15 +49,9 @@ struct FarmStats {
 Image farm_frame(Communicator& comm, const std::function<Renderer&()>& prepare, const FarmSettings& settings,
                  FarmStats* stats);
 
-// A rank's share as it travels to rank 0 (every field; dist/frame_queue
-// sends its shares the same way).
-Bytes encode_share(const RankShare& share);
-RankShare decode_share(const Bytes& bytes, int rank);
-
 // The tile rule of FarmSettings: rows of the next tile when `left` rows
 // remain for `ranks` ranks in a frame `width` wide, at most `max_rows` (a
-// tile's message stays under kMaxTileBytes).
+// tile's message stays under kMaxTileBytes: rows_per_message()).
 int next_tile_rows(int left, int ranks, int width, int tile_rows, int max_rows);
-constexpr long long kMaxTileBytes = 256LL << 20;
 
 }  // namespace clrt::dist

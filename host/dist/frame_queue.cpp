@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "cl/cl.hpp"
+#include "dist/farm.hpp"
 #include "dist/job.hpp"
 #include "dist/wire.hpp"
 #include "util/error.hpp"
@@ -67,6 +68,16 @@ Bytes get_bytes(Reader& r) {
 // What a result message holds after its FrameRun.
 constexpr uint8_t kRows = 0, kFile = 1;
 
+// A result message: the FrameRun, the kind, a byte count and the bytes.
+Bytes encode_frame_result(const FrameRun& run, uint8_t kind, const void* data, size_t size) {
+  Writer w;
+  put_run(w, run);
+  w.put<uint8_t>(kind);
+  w.put<uint64_t>(size);
+  w.put_raw(data, size);
+  return std::move(w.bytes);
+}
+
 // Renders one frame and times it; across ranks the frame must be what the
 // queue gathers.
 Image render_frame(const RenderFrameFn& render, const Scene& scene, FrameRun& run, const FrameQueueSettings& s,
@@ -91,64 +102,102 @@ std::string frame_label(int index) {
   return "frame " + std::to_string(index) + ": ";
 }
 
-void work(Communicator& comm, const FrameQueueSettings& settings, const RenderFrameFn& render) {
-  RankShare share;
-  share.rank = comm.rank();
-  share.host = comm.host();
-  std::exception_ptr failure;
+// A rank other than 0: frames until none are left.
+void work_frames(Communicator& comm, const FrameQueueSettings& settings, const RenderFrameFn& render) {
+  const int band = rows_per_message(settings.width, settings.height, settings.contents, settings.max_message_bytes);
   int index = -1;
-  try {
-    const int band = rows_per_message(settings.width, settings.height, settings.contents, settings.max_message_bytes);
-    for (;;) {
-      const Message m = receive_work(comm);
-      Reader in(m.data);
-      index = in.get<int32_t>();
-      if (index < 0) break;  // no frames left
-      const Scene scene = decode_scene(get_bytes(in));
-      FrameRun run;
-      run.index = index, run.rank = comm.rank(), run.host = share.host;
-      Image img;
-      std::string file;
-      keep_alive(comm, [&] {
-        img = render_frame(render, scene, run, settings, /*check=*/true);
-        if (settings.encode) file = settings.encode(img, scene, run);
-      });
-      add_frame(share, run, settings.height);
-      if (settings.encode) {
-        Writer w;
-        put_run(w, run);
-        w.put<uint8_t>(kFile);
-        w.put<uint64_t>(file.size());
-        w.put_raw(file.data(), file.size());
-        comm.send(0, kTagResult, w.bytes);
-        continue;
-      }
-      for (int y0 = 0; y0 < settings.height; y0 += band) {
-        Writer w;
-        put_run(w, run);
-        w.put<uint8_t>(kRows);
-        const Bytes rows = encode_rows(img, y0, std::min(settings.height, y0 + band));
-        w.put<uint64_t>(rows.size());
-        w.put_raw(rows.data(), rows.size());
-        comm.send(0, kTagResult, w.bytes);
-      }
+  WorkerJob job;
+  job.unit = [&](const Message& m, RankShare& share) {
+    Reader in(m.data);
+    index = in.get<int32_t>();
+    if (index < 0) return false;  // no frames left
+    const Scene scene = decode_scene(get_bytes(in));
+    FrameRun run;
+    run.index = index, run.rank = comm.rank(), run.host = share.host;
+    Image img;
+    std::string file;
+    keep_alive(comm, [&] {
+      img = render_frame(render, scene, run, settings, /*check=*/true);
+      if (settings.encode) file = settings.encode(img, scene, run);
+    });
+    add_frame(share, run, settings.height);
+    if (settings.encode) {
+      comm.send(0, kTagResult, encode_frame_result(run, kFile, file.data(), file.size()));
+      return true;
     }
-    comm.send(0, kTagReport, encode_share(share));
-    comm.flush();
-    return;
-  } catch (const JobAborted&) {
-    throw;
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  report_failure_to_root(comm, (index >= 0 ? frame_label(index) : std::string()) + exception_text(failure));
+    for (int y0 = 0; y0 < settings.height; y0 += band) {
+      const Bytes rows = encode_rows(img, y0, std::min(settings.height, y0 + band));
+      comm.send(0, kTagResult, encode_frame_result(run, kRows, rows.data(), rows.size()));
+    }
+    return true;
+  };
+  job.context = [&] { return index >= 0 ? frame_label(index) : std::string(); };
+  run_worker(comm, job);
 }
 
-// A frame on its way to rank 0 in bands.
-struct Arriving {
-  Image img;
-  FrameRun run;
-  int rows = 0;
+// The frames on their way to rank 0 in bands, by index.
+class Arrivals {
+ public:
+  explicit Arrivals(const FrameQueueSettings& settings) : settings_(settings) {}
+  // Adds a band of frame run.index: true once the frame is whole, which
+  // then moves to `whole`.
+  bool add(const FrameRun& run, const Bytes& band, Image& whole) {
+    Arriving& a = arriving_[run.index];
+    if (a.img.pixels() == 0) a.img = Image(settings_.width, settings_.height, settings_.contents);
+    int y0 = 0, y1 = 0;
+    decode_rows(band, a.img, y0, y1);
+    a.rows += y1 - y0;
+    if (a.rows < settings_.height) return false;
+    whole = std::move(a.img);
+    arriving_.erase(run.index);
+    return true;
+  }
+
+ private:
+  struct Arriving {
+    Image img;
+    int rows = 0;
+  };
+  const FrameQueueSettings& settings_;
+  std::map<int, Arriving> arriving_;
+};
+
+// Rank 0's frames for the other ranks: for a rank, frames up to `most` in
+// its hands (one rendering, one queued behind it while more frames are
+// left than ranks: near the end a queued frame would wait while another
+// rank idles), or the news that there are none left once it has none.
+class Handout {
+ public:
+  Handout(Communicator& comm, UnitQueue& queue, const SceneSource& scenes)
+      : comm_(comm),
+        queue_(queue),
+        scenes_(scenes),
+        outstanding_(size_t(comm.size()), 0),
+        told_done_(size_t(comm.size()), false) {}
+  void give(int rank, int most) {
+    int& held = outstanding_[size_t(rank)];
+    int index = 0;
+    while (held < most && (held == 0 || queue_.left() > comm_.size()) && queue_.take(index)) {
+      comm_.send(rank, kTagWork, encode_work(index, encode_scene(*scenes_(size_t(index)))));
+      ++held;
+    }
+    if (held == 0 && !told_done_[size_t(rank)]) {
+      comm_.send(rank, kTagWork, encode_work(-1, {}));
+      told_done_[size_t(rank)] = true;
+    }
+  }
+  // A frame from `rank` has arrived whole: its next one goes out.
+  void arrived(int rank) {
+    --outstanding_[size_t(rank)];
+    give(rank, 2);
+  }
+
+ private:
+  Communicator& comm_;
+  UnitQueue& queue_;
+  const SceneSource& scenes_;
+  std::vector<int> outstanding_;
+  std::vector<bool> told_done_;
 };
 
 // A frame rank 0's own thread finished: its pixels, or its file where the
@@ -159,85 +208,22 @@ struct Finished {
   std::string file;
 };
 
-void master(Communicator& comm, size_t count, const SceneSource& scenes, const FrameQueueSettings& settings,
-            const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats) {
+// Rank 0: hands out frames, renders frames itself, gathers and delivers
+// them.
+void gather_frames(Communicator& comm, size_t count, const SceneSource& scenes, const FrameQueueSettings& settings,
+                   const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats) {
   const auto t0 = Clock::now();
   const int ranks = comm.size();
   const int frames = int(count);
-  std::vector<RankShare> shares(static_cast<size_t>(ranks));
-  for (int r = 0; r < ranks; ++r) shares[size_t(r)].rank = r;
-  const std::string host = comm.host();
-  shares[0].host = host;
-
-  // The frames not yet handed out, taken by this thread (for the other
-  // ranks) and by rank 0's render thread.
-  std::mutex mutex;
-  int next = 0;
-  bool closed = false;
-  std::vector<Finished> finished;
-  const auto take = [&](int& index) {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (closed || next >= frames) return false;
-    index = next++;
-    return true;
-  };
-  const auto left = [&] {
-    std::lock_guard<std::mutex> lock(mutex);
-    return closed ? 0 : frames - next;
-  };
-
-  // Rank 0 renders too, on a thread of its own: this thread answers the
-  // other ranks and writes the frames (MPI_THREAD_FUNNELED: only it calls
-  // MPI).
-  std::exception_ptr local_failure;
+  UnitQueue queue(frames);
+  Handout handout(comm, queue, scenes);
+  Arrivals arrivals(settings);
+  LocalResults<Finished> finished;
   int local_index = -1;
-  std::atomic<bool> local_done{false};
-  std::thread local([&] {
-    try {
-      while (take(local_index)) {
-        FrameRun run;
-        run.index = local_index, run.rank = 0, run.host = host;
-        const std::shared_ptr<const Scene> scene = scenes(size_t(local_index));
-        Image img = render_frame(render, *scene, run, settings, /*check=*/true);
-        std::string file;
-        if (settings.encode) file = settings.encode(img, *scene, run), img = Image{};
-        add_frame(shares[0], run, settings.height);
-        std::lock_guard<std::mutex> lock(mutex);
-        finished.push_back(Finished{std::move(img), run, std::move(file)});
-      }
-    } catch (...) {
-      local_failure = std::current_exception();
-    }
-    local_done = true;
-  });
 
-  std::vector<int> outstanding(static_cast<size_t>(ranks), 0);
-  std::vector<bool> told_done(static_cast<size_t>(ranks), false), reported(static_cast<size_t>(ranks), false);
-  // Frames for `rank` up to `most` in its hands (one rendering, one queued
-  // behind it while more frames are left than ranks: near the end a queued
-  // frame would wait while another rank idles), or the news that there are
-  // none left once it has none.
-  const auto give = [&](int rank, int most) {
-    int index = 0;
-    while (outstanding[size_t(rank)] < most && (outstanding[size_t(rank)] == 0 || left() > ranks) && take(index)) {
-      comm.send(rank, kTagWork, encode_work(index, encode_scene(*scenes(size_t(index)))));
-      ++outstanding[size_t(rank)];
-    }
-    if (outstanding[size_t(rank)] == 0 && !told_done[size_t(rank)]) {
-      comm.send(rank, kTagWork, encode_work(-1, {}));
-      told_done[size_t(rank)] = true;
-    }
-  };
-  for (int r = 1; r < ranks; ++r) give(r, 1);
-  for (int r = 1; r < ranks; ++r) give(r, 2);
-
-  int waiting = ranks - 1;  // ranks that have not reported
   int frames_done = 0;
   double longest_ms = 0;
-  std::string remote_failure;
-  std::exception_ptr own_failure;  // done() or a malformed message
   long long bytes = 0;
-  std::map<int, Arriving> arriving;
   const auto deliver = [&](const Image& img, const std::string& file, const FrameRun& run) {
     longest_ms = std::max(longest_ms, run.ms);
     if (settings.encode)
@@ -247,94 +233,58 @@ void master(Communicator& comm, size_t count, const SceneSource& scenes, const F
     ++frames_done;
     if (settings.progress) settings.progress(frames_done, frames, "frames");
   };
-  if (settings.progress) settings.progress(0, frames, "frames");
-  auto pause = std::chrono::microseconds(20);
-  const auto failed = [&] { return !remote_failure.empty() || own_failure || (local_done && local_failure); };
-  Liveness live(comm);
-  while ((frames_done < frames || waiting > 0) && !failed()) {
-    try {
-      std::vector<Finished> mine;
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        mine.swap(finished);
-      }
-      for (const Finished& f : mine) deliver(f.img, f.file, f.run);
-      if (!mine.empty()) continue;
-      Message m;
-      if (!comm.try_receive(m)) {
-        const std::string silent = live.silent([&](int r) { return !reported[size_t(r)]; });
-        if (!silent.empty())
-          fail_silent(comm, silent + "; " + std::to_string(frames_done) + " of " + std::to_string(frames) +
-                                " frames were done");
-        std::this_thread::sleep_for(pause);
-        pause = std::min(pause * 2, std::chrono::microseconds(1000));
-        continue;
-      }
-      pause = std::chrono::microseconds(20);
-      live.heard(m.source);
-      if (m.tag == kTagResult) {
-        Reader in(m.data);
-        const FrameRun run = get_run(in, m.source);
-        const uint8_t kind = in.get<uint8_t>();
-        const Bytes rows = get_bytes(in);
-        if (run.index < 0 || run.index >= frames) throw DeviceError("MPI: a frame out of the job in a message");
-        if (kind != (settings.encode ? kFile : kRows)) throw DeviceError("MPI: a frame of the wrong kind in a message");
-        bytes += (long long)m.data.size();
-        if (kind == kFile) {
-          --outstanding[size_t(m.source)];
-          give(m.source, 2);
-          deliver(Image{}, std::string(rows.begin(), rows.end()), run);
-          continue;
-        }
-        Arriving& a = arriving[run.index];
-        if (a.img.pixels() == 0) a.img = Image(settings.width, settings.height, settings.contents), a.run = run;
-        int y0 = 0, y1 = 0;
-        decode_rows(rows, a.img, y0, y1);
-        a.rows += y1 - y0;
-        if (a.rows < settings.height) continue;
-        const Arriving whole = std::move(a);
-        arriving.erase(run.index);
-        --outstanding[size_t(m.source)];
-        give(m.source, 2);
-        deliver(whole.img, {}, whole.run);
-      } else if (m.tag == kTagReport) {
-        shares[size_t(m.source)] = decode_share(m.data, m.source);
-        reported[size_t(m.source)] = true;
-        --waiting;
-      } else if (m.tag == kTagError) {
-        Reader in(m.data);
-        remote_failure = in.get_text();
-      }
-    } catch (...) {
-      own_failure = std::current_exception();
+
+  MasterJob job;
+  job.local = [&](RankShare& own) {
+    while (queue.take(local_index)) {
+      FrameRun run;
+      run.index = local_index, run.rank = 0, run.host = own.host;
+      const std::shared_ptr<const Scene> scene = scenes(size_t(local_index));
+      Image img = render_frame(render, *scene, run, settings, /*check=*/true);
+      std::string file;
+      if (settings.encode) file = settings.encode(img, *scene, run), img = Image{};
+      add_frame(own, run, settings.height);
+      finished.put(Finished{std::move(img), run, std::move(file)});
     }
-  }
-  if (failed()) {
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      closed = true;
-    }
-    std::vector<int> running;
-    for (int r = 1; r < ranks; ++r)
-      if (!reported[size_t(r)]) running.push_back(r);
-    std::string line;
-    if (!remote_failure.empty())
-      line = remote_failure;
-    else if (own_failure)
-      line = exception_text(own_failure);
-    else
-      line = rank_label(0, host) + ": " + frame_label(local_index) + exception_text(local_failure);
-    // A rank is told to stop between frames: give it the longest frame yet
-    // to finish the one it renders.
-    stop_ranks(
-        comm, running, [&] { std::fprintf(stderr, "clrt: error: %s\n", line.c_str()); }, 30 + 2 * longest_ms / 1000);
-    local.join();
-    if (own_failure && remote_failure.empty()) std::rethrow_exception(own_failure);
-    throw DeviceError(line);
-  }
-  local.join();
+  };
+  job.local_context = [&] { return frame_label(local_index); };
+  job.start = [&] {
+    for (int r = 1; r < ranks; ++r) handout.give(r, 1);
+    for (int r = 1; r < ranks; ++r) handout.give(r, 2);
+    if (settings.progress) settings.progress(0, frames, "frames");
+  };
+  job.deliver_local = [&] {
+    const std::vector<Finished> mine = finished.take_all();
+    for (const Finished& f : mine) deliver(f.img, f.file, f.run);
+    return !mine.empty();
+  };
+  job.result = [&](const Message& m, double) {
+    if (m.tag != kTagResult) return;
+    Reader in(m.data);
+    const FrameRun run = get_run(in, m.source);
+    const uint8_t kind = in.get<uint8_t>();
+    const Bytes payload = get_bytes(in);
+    if (run.index < 0 || run.index >= frames) throw DeviceError("MPI: a frame out of the job in a message");
+    if (kind != (settings.encode ? kFile : kRows)) throw DeviceError("MPI: a frame of the wrong kind in a message");
+    bytes += (long long)m.data.size();
+    Image whole;
+    if (kind == kRows && !arrivals.add(run, payload, whole)) return;
+    handout.arrived(m.source);
+    deliver(whole, kind == kFile ? std::string(payload.begin(), payload.end()) : std::string(), run);
+  };
+  job.progress_note = [&] {
+    return std::to_string(frames_done) + " of " + std::to_string(frames) + " frames were done";
+  };
+  job.close = [&] { queue.close(); };
+  // A rank is told to stop between frames: give it the longest frame yet
+  // to finish the one it renders.
+  job.stop_patience_s = [&] { return 30 + 2 * longest_ms / 1000; };
+  // done()'s exception (a write that failed) keeps its own error and exit
+  // status.
+  job.own_failure_as_is = true;
+  std::vector<RankShare> shares = run_master(comm, job);
   if (stats) {
-    stats->ranks = shares;
+    stats->ranks = std::move(shares);
     stats->frames = frames;
     stats->wall_ms = ms_since(t0);
     stats->bytes_received = bytes;
@@ -343,22 +293,19 @@ void master(Communicator& comm, size_t count, const SceneSource& scenes, const F
 
 }  // namespace
 
-int rows_per_message(int width, int height, const FrameContents& contents, long long max_bytes) {
-  const long long row = static_cast<long long>(row_pixel_bytes(contents)) * std::max(1, width);
-  return int(std::max<long long>(1, std::min<long long>(std::max(1, height), max_bytes / row)));
-}
-
 void farm_frames(Communicator& comm, const std::vector<Scene>& scenes, const FrameQueueSettings& settings,
                  const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats) {
   // Each frame's scene is the vector's own (an aliasing pointer, no copy).
-  const SceneSource source = [&scenes](size_t i) { return std::shared_ptr<const Scene>(std::shared_ptr<const Scene>(), &scenes[i]); };
+  const SceneSource source = [&scenes](size_t i) {
+    return std::shared_ptr<const Scene>(std::shared_ptr<const Scene>(), &scenes[i]);
+  };
   farm_frames(comm, scenes.size(), source, settings, render, done, stats);
 }
 
 void farm_frames(Communicator& comm, size_t count, const SceneSource& scenes, const FrameQueueSettings& settings,
                  const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats) {
-  if (comm.rank() != 0) return work(comm, settings, render);
-  if (comm.distributed()) return master(comm, count, scenes, settings, render, done, stats);
+  if (comm.rank() != 0) return work_frames(comm, settings, render);
+  if (comm.distributed()) return gather_frames(comm, count, scenes, settings, render, done, stats);
   // A world of one: frame after frame on this thread.
   const auto t0 = Clock::now();
   RankShare share;

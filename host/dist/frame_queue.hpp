@@ -90,8 +90,4 @@ using SceneSource = std::function<std::shared_ptr<const Scene>(size_t index)>;
 void farm_frames(Communicator& comm, size_t count, const SceneSource& scenes, const FrameQueueSettings& settings,
                  const RenderFrameFn& render, const FrameDoneFn& done, FrameQueueStats* stats);
 
-// Rows per result message for frames `width` wide holding `contents`: the
-// whole frame where it fits `max_bytes`, else bands that do (one row at least).
-int rows_per_message(int width, int height, const FrameContents& contents, long long max_bytes = kMaxTileBytes);
-
 }  // namespace clrt::dist

@@ -173,9 +173,13 @@ std::string Liveness::silent(const std::function<bool(int)>& owes) const {
   return "";
 }
 
-void fail_silent(Communicator& comm, const std::string& line) {
+void print_error_line(const std::string& line) {
   std::fprintf(stderr, "clrt: error: %s\n", line.c_str());
   std::fflush(stderr);
+}
+
+void fail_silent(Communicator& comm, const std::string& line) {
+  print_error_line(line);
   comm.abort(2);
   std::_Exit(2);  // (abort() does not return; the compiler cannot see it through the interface)
 }

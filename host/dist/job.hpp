@@ -86,6 +86,9 @@ class Liveness {
   std::vector<double> last_s_;  // steady-clock seconds of each rank's last message
 };
 
+// Rank 0's one error line for a failed job: "clrt: error: LINE" on stderr.
+void print_error_line(const std::string& line);
+
 // Rank 0 when a rank has gone silent: the one error line, then MPI_Abort
 // (2): a rank that answers nothing cannot take part in MPI_Finalize, and
 // mpirun ends every rank.

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <functional>
+#include <string>
 
 #include "cl/launch_timing.hpp"
 #include "embree_tracer.hpp"
@@ -55,93 +57,62 @@ PixelAgreement compare_rgba8(const std::vector<uint8_t>& a, const std::vector<ui
   return pixel_agreement(a, b, 4, levels, [](uint8_t v) { return int(v); });
 }
 
-BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
-                      const BenchSettings& s) {
-  BenchResult r;
-  for (size_t i = 0; i < devs.size(); ++i) r.device += (i ? " + " : "") + devs[i].name;
-  r.width = s.width;
-  r.height = s.height;
-  r.depth = s.depth;
-  r.spp = s.spp;
-  r.subsample = s.subsample;
-  r.repeat = s.repeat;
-  // The OpenMP and Embree tracers trace one ray per pixel and implement
-  // chapters 2-4 only: at spp > 1, with transparent spheres or with planes
-  // and triangles their frames
-  // would not be the same image, so they are not run (r.tracers_not_run
-  // says why); a lean build has none.
+namespace {
+
+using StepFn = std::function<void(const std::string& what)>;
+
+// Why the OpenMP and Embree tracers are not run on `scene` ("": they are).
+// They trace one ray per pixel and implement chapters 2-4 only: at spp > 1,
+// with transparent spheres or with planes and triangles their frames would
+// not be the same image; a lean build has none.
+std::string tracers_not_run(const Scene& scene, const BenchSettings& s) {
   const bool transparent = std::any_of(scene.spheres.begin(), scene.spheres.end(),
                                        [](const Sphere& sphere) { return sphere.transparency > 0; });
-  if (kLeanBuild)
-    r.tracers_not_run = std::string(kLeanBuildNote) + " (no OpenMP/Embree comparison tracers)";
-  else if (s.subsample != Subsample::Off)
-    r.tracers_not_run = "they do not subsample (--subsample)";
-  else if (s.spp > 1)
-    r.tracers_not_run = "they trace one ray per pixel (--spp " + std::to_string(s.spp) + " traces " +
-                        std::to_string(s.spp * s.spp) + ")";
-  else if (transparent)
-    r.tracers_not_run = "they do not implement transparency (the scene has transparent spheres)";
-  else if (!scene.planes.empty() || !scene.triangles.empty())
-    r.tracers_not_run = "they trace spheres only (the scene has planes or triangles)";
-  const bool tracers = r.tracers_not_run.empty();
-  const int build_repeat = std::min(r.repeat, kMaxBuildRepeat);
-  const bool warm_builds = s.builds && settings.kernel.use_cache;
-  const int total = (s.builds ? build_repeat : 0) + (warm_builds ? build_repeat + 1 : 0) + 1 + r.repeat + 1 +
-                    (s.peak ? 1 : 0) + (s.reference ? 1 : 0);
-  int done = 0;
-  const auto step = [&](const std::string& what) {
-    if (s.progress) s.progress(done++, total, what);
-  };
+  if (kLeanBuild) return std::string(kLeanBuildNote) + " (no OpenMP/Embree comparison tracers)";
+  if (s.subsample != Subsample::Off) return "they do not subsample (--subsample)";
+  if (s.spp > 1)
+    return "they trace one ray per pixel (--spp " + std::to_string(s.spp) + " traces " + std::to_string(s.spp * s.spp) +
+           ")";
+  if (transparent) return "they do not implement transparency (the scene has transparent spheres)";
+  if (!scene.planes.empty() || !scene.triangles.empty())
+    return "they trace spheres only (the scene has planes or triangles)";
+  return "";
+}
 
-  std::vector<double> cold, warm, uploads;
-  if (s.builds) {
-    // Cold: from source, program cache bypassed (PoCL's own cache is only
-    // off if POCL_KERNEL_CACHE=0 is set; see docs/reference/kernel.md).
-    RenderSettings no_cache = settings;
-    no_cache.kernel.use_cache = false;
-    for (int i = 0; i < build_repeat; ++i) {
-      step("cold build " + std::to_string(i + 1) + " of " + std::to_string(build_repeat));
-      Renderer c(devs, no_cache);
+// Cold builds (from source, the program cache bypassed) and cached builds:
+// their times, into the three lists.
+void time_builds(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
+                 const BenchSettings& s, int build_repeat, const StepFn& step, BenchResult& r,
+                 std::vector<double>& cold, std::vector<double>& warm, std::vector<double>& uploads) {
+  // Cold: from source, program cache bypassed (PoCL's own cache is only
+  // off if POCL_KERNEL_CACHE=0 is set; see docs/reference/kernel.md).
+  RenderSettings no_cache = settings;
+  no_cache.kernel.use_cache = false;
+  for (int i = 0; i < build_repeat; ++i) {
+    step("cold build " + std::to_string(i + 1) + " of " + std::to_string(build_repeat));
+    Renderer c(devs, no_cache);
+    c.prepare(scene, s.width, s.height, s.depth, s.sampling());
+    cold.push_back(c.stats().build_ms);
+  }
+  // Make sure the entry exists, then time loads from the cache.
+  if (settings.kernel.use_cache) {
+    r.build_warm_cached = true;
+    for (int i = 0; i <= build_repeat; ++i) {
+      step("cached build " + std::to_string(i + 1) + " of " + std::to_string(build_repeat + 1));
+      Renderer c(devs, settings);
       c.prepare(scene, s.width, s.height, s.depth, s.sampling());
-      cold.push_back(c.stats().build_ms);
-    }
-    // Make sure the entry exists, then time loads from the cache.
-    if (settings.kernel.use_cache) {
-      r.build_warm_cached = true;
-      for (int i = 0; i <= build_repeat; ++i) {
-        step("cached build " + std::to_string(i + 1) + " of " + std::to_string(build_repeat + 1));
-        Renderer c(devs, settings);
-        c.prepare(scene, s.width, s.height, s.depth, s.sampling());
-        if (i == 0) continue;  // the one that stores the entry
-        warm.push_back(c.stats().build_ms);
-        uploads.push_back(c.stats().upload_ms);
-        r.build_warm_cached = r.build_warm_cached && c.stats().build_cached;
-      }
+      if (i == 0) continue;  // the one that stores the entry
+      warm.push_back(c.stats().build_ms);
+      uploads.push_back(c.stats().upload_ms);
+      r.build_warm_cached = r.build_warm_cached && c.stats().build_cached;
     }
   }
+}
 
-  // End to end on a fresh renderer: (warm) build + upload + first frame.
-  step("first frame and warm-ups");
-  const auto t0 = Clock::now();
-  Renderer cl(devs, settings);
-  cl.prepare(scene, s.width, s.height, s.depth, s.sampling());
-  r.options = cl.options();
-  if (warm.empty()) {
-    warm.push_back(cl.stats().build_ms);
-    r.build_warm_cached = settings.kernel.use_cache && cl.stats().build_cached;
-  }
-  uploads.push_back(cl.stats().upload_ms);
-  r.image = cl.render();
-  r.end_to_end_ms = ms_since(t0);
-  r.first_launch_ms = cl.stats().kernel_ms;
-  r.bvh = cl.stats().bvh;
-  r.bvh_build_ms = cl.stats().bvh_build_ms;
-  r.bvh_bytes = cl.stats().bvh_bytes;
-  r.bvh_depth = cl.stats().bvh_depth;
-  r.build_cold = summarize(cold);
-  r.build_warm = summarize(warm);
-  r.upload = summarize(uploads);
-
+// The timed rounds on `cl`, with the OpenMP and Embree frames beside
+// clrt's when `tracers`.
+void time_rounds(const Scene& scene, const RenderSettings& settings, const BenchSettings& s, bool tracers, Renderer& cl,
+                 const StepFn& step, BenchResult& r) {
   // Timed rounds: a clrt frame, then an OpenMP frame and an Embree frame of
   // the same image, so background load on a shared machine falls on all
   // alike and each round gives one like-for-like ratio per comparison. The
@@ -203,9 +174,11 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
   r.embree_build = summarize(embree_build);
   r.embree_build_ms = r.embree_build.median;
   r.speedup_vs_embree = summarize(embree_ratio);
+}
 
-  // Rays: a separate build with per-pixel counters (they cost time).
-  step("counting rays");
+// Rays: a separate build with per-pixel counters (they cost time).
+void count_rays(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
+                const BenchSettings& s, BenchResult& r) {
   RenderSettings counting = settings;
   counting.kernel.count_rays = true;
   Renderer rc(devs, counting);
@@ -217,24 +190,87 @@ BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, c
     r.gflops = kFlopPerSphereTest * r.rays.sphere_tests / (r.kernel.median * 1e6);
   }
   if (r.rays.sphere_tests) r.ns_per_sphere_test = r.kernel.median * 1e6 / r.rays.sphere_tests;
+}
 
+// Each device's measured peak of multiply-adds (0 in all when one was not
+// measured).
+void measure_peaks(const std::vector<DeviceInfo>& devs, BenchResult& r) {
+  bool all = true;
+  for (const auto& d : devs) {
+    r.peaks.push_back(measure_peak_flops(d));
+    all = all && r.peaks.back().measured;
+    r.peak_gflops += r.peaks.back().gflops;
+  }
+  if (!all) r.peak_gflops = 0;
+}
+
+// The scalar double reference's time for the same image.
+void time_reference(const Scene& scene, const BenchSettings& s, BenchResult& r) {
+  const auto t2 = Clock::now();
+  r.reference_image = render_reference(scene, s.width, s.height, s.depth, s.sampling());
+  r.reference = summarize({ms_since(t2)});
+  if (r.frame.median > 0) r.speedup_vs_reference = r.reference.median / r.frame.median;
+}
+
+}  // namespace
+
+BenchResult run_bench(const Scene& scene, const std::vector<DeviceInfo>& devs, const RenderSettings& settings,
+                      const BenchSettings& s) {
+  BenchResult r;
+  for (size_t i = 0; i < devs.size(); ++i) r.device += (i ? " + " : "") + devs[i].name;
+  r.width = s.width;
+  r.height = s.height;
+  r.depth = s.depth;
+  r.spp = s.spp;
+  r.subsample = s.subsample;
+  r.repeat = s.repeat;
+  r.tracers_not_run = tracers_not_run(scene, s);
+  const bool tracers = r.tracers_not_run.empty();
+  const int build_repeat = std::min(r.repeat, kMaxBuildRepeat);
+  const bool warm_builds = s.builds && settings.kernel.use_cache;
+  const int total = (s.builds ? build_repeat : 0) + (warm_builds ? build_repeat + 1 : 0) + 1 + r.repeat + 1 +
+                    (s.peak ? 1 : 0) + (s.reference ? 1 : 0);
+  int done = 0;
+  const auto step = [&](const std::string& what) {
+    if (s.progress) s.progress(done++, total, what);
+  };
+
+  std::vector<double> cold, warm, uploads;
+  if (s.builds) time_builds(scene, devs, settings, s, build_repeat, step, r, cold, warm, uploads);
+
+  // End to end on a fresh renderer: (warm) build + upload + first frame.
+  step("first frame and warm-ups");
+  const auto t0 = Clock::now();
+  Renderer cl(devs, settings);
+  cl.prepare(scene, s.width, s.height, s.depth, s.sampling());
+  r.options = cl.options();
+  if (warm.empty()) {
+    warm.push_back(cl.stats().build_ms);
+    r.build_warm_cached = settings.kernel.use_cache && cl.stats().build_cached;
+  }
+  uploads.push_back(cl.stats().upload_ms);
+  r.image = cl.render();
+  r.end_to_end_ms = ms_since(t0);
+  r.first_launch_ms = cl.stats().kernel_ms;
+  r.bvh = cl.stats().bvh;
+  r.bvh_build_ms = cl.stats().bvh_build_ms;
+  r.bvh_bytes = cl.stats().bvh_bytes;
+  r.bvh_depth = cl.stats().bvh_depth;
+  r.build_cold = summarize(cold);
+  r.build_warm = summarize(warm);
+  r.upload = summarize(uploads);
+
+  time_rounds(scene, settings, s, tracers, cl, step, r);
+
+  step("counting rays");
+  count_rays(scene, devs, settings, s, r);
   if (s.peak) {
     step("peak multiply-adds");
-    bool all = true;
-    for (const auto& d : devs) {
-      r.peaks.push_back(measure_peak_flops(d));
-      all = all && r.peaks.back().measured;
-      r.peak_gflops += r.peaks.back().gflops;
-    }
-    if (!all) r.peak_gflops = 0;
+    measure_peaks(devs, r);
   }
-
   if (s.reference) {
     step("reference (scalar double)");
-    const auto t2 = Clock::now();
-    r.reference_image = render_reference(scene, s.width, s.height, s.depth, s.sampling());
-    r.reference = summarize({ms_since(t2)});
-    if (r.frame.median > 0) r.speedup_vs_reference = r.reference.median / r.frame.median;
+    time_reference(scene, s, r);
   }
   if (s.progress) s.progress(total, total, "done");
   return r;

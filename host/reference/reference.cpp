@@ -304,6 +304,85 @@ class Tracer {
   double min_weight_;
 };
 
+// The camera's rays and a pixel's samples (chapter 5's supersampling).
+class PixelSampler {
+ public:
+  PixelSampler(const Tracer& tracer, const Camera& cam, int width, int height, int depth, const Sampling& sampling)
+      : tracer_(tracer),
+        cam_(cam),
+        width_(width),
+        height_(height),
+        depth_(depth),
+        n_(sampling.spp),
+        sampling_(sampling),
+        camera_medium_(tracer.CameraMedium()) {}
+
+  double camera_medium() const { return camera_medium_; }
+
+  // The camera ray's direction through canvas point (cx, cy):
+  // CanvasToViewport, then the camera rotation.
+  Vec3 ray(double cx, double cy) const {
+    const auto& m = cam_.rotation;
+    const Vec3 d{cx * cam_.viewport_w / width_, cy * cam_.viewport_h / height_, cam_.projection_plane_d};
+    return Vec3{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
+                m[6] * d.x + m[7] * d.y + m[8] * d.z};
+  }
+
+  // Canvas point (x, y)'s colour: the mean of its samples (for N = 1, the
+  // one sample's colour exactly). The classification - the primary hit and
+  // the shadow mask - is the first sample's.
+  Vec3 pixel(int x, int y, int32_t* hit, int32_t* shadowed) const {
+    const int n = n_;
+    // Supersampling: the N x N sub-pixel points (x + o_i, y + o_j),
+    // o_k = (k + 0.5) / N - 0.5; N = 1 is the point (x, y) itself.
+    // Sample s's colour; its primary hit goes to *hit_id.
+    auto sample = [&](int s, int32_t* hit_id, int32_t* shadow) {
+      const double ox = ((s % n) + 0.5) / n - 0.5, oy = ((s / n) + 0.5) / n - 0.5;
+      return tracer_.TraceRay(cam_.position, ray(x + ox, y + oy), 1, kInf, depth_, camera_medium_, 1.0, hit_id, shadow);
+    };
+    Vec3 sum{0, 0, 0};
+    int traced = 0;
+    if (sampling_.adaptive()) {
+      // The four corners of the grid; sample 0 first.
+      const int corners[4] = {0, n - 1, n * (n - 1), n * n - 1};
+      int32_t hits[4] = {-1, -1, -1, -1};
+      Vec3 c[4];
+      for (int k = 0; k < 4; ++k) c[k] = sample(corners[k], &hits[k], k == 0 ? shadowed : nullptr);
+      *hit = hits[0];
+      bool flat = hits[1] == hits[0] && hits[2] == hits[0] && hits[3] == hits[0];
+      for (double Vec3::*channel : {&Vec3::x, &Vec3::y, &Vec3::z}) {
+        const double lo = std::min({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
+        const double hi = std::max({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
+        flat = flat && hi - lo <= sampling_.adaptive_threshold;
+      }
+      sum = c[0] + c[1] + c[2] + c[3];
+      traced = 4;
+      if (!flat) {
+        for (int s = 0; s < n * n; ++s)
+          if (s != corners[0] && s != corners[1] && s != corners[2] && s != corners[3])
+            sum = sum + sample(s, nullptr, nullptr);
+        traced = n * n;
+      }
+    } else {
+      for (int s = 0; s < n * n; ++s) {
+        const bool first = s == 0;
+        Vec3 c = sample(s, first ? hit : nullptr, first ? shadowed : nullptr);
+        sum = first ? c : sum + c;
+      }
+      traced = n * n;
+    }
+    const double samples = double(traced);
+    return Vec3{sum.x / samples, sum.y / samples, sum.z / samples};
+  }
+
+ private:
+  const Tracer& tracer_;
+  const Camera& cam_;
+  int width_, height_, depth_, n_;
+  Sampling sampling_;
+  double camera_medium_;
+};
+
 }  // namespace
 
 Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling,
@@ -316,15 +395,8 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
   Image img(width, height);
   Tracer tracer(scene, sampling.ray_cut ? double(ray_cut(scene).min_weight) : 0.0);
   const Camera& cam = scene.camera;
-  const double camera_medium = tracer.CameraMedium();
-  const auto& m = cam.rotation;
-  // The camera ray's direction through canvas point (cx, cy):
-  // CanvasToViewport, then the camera rotation.
-  auto camera_ray = [&](double cx, double cy) {
-    const Vec3 d{cx * cam.viewport_w / width, cy * cam.viewport_h / height, cam.projection_plane_d};
-    return Vec3{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
-                m[6] * d.x + m[7] * d.y + m[8] * d.z};
-  };
+  const PixelSampler sampler(tracer, cam, width, height, depth, sampling);
+  const double camera_medium = sampler.camera_medium();
   // Subsampling: the even columns first, each traced as usual; then the odd
   // ones, from their neighbours' primary hits (scene/sampling.hpp).
   const int passes = sampling.subsample != Subsample::Off ? 2 : 1;
@@ -351,7 +423,7 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
           }
           if (assumed) {
             const int32_t id = img.hit[p - 1];
-            const Vec3 D = camera_ray(x, y);
+            const Vec3 D = sampler.ray(x, y);
             Hit h;  // both neighbours missed: background, no search
             if (id >= 0) {
               h = tracer.IntersectOnly(id, cam.position, D, 1, kInf);
@@ -366,49 +438,7 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
             continue;
           }
         }
-        // Supersampling: the N x N sub-pixel points (x + o_i, y + o_j),
-        // o_k = (k + 0.5) / N - 0.5; N = 1 is the point (x, y) itself.
-        // Sample s's colour; its primary hit goes to *hit_id.
-        auto sample = [&](int s, int32_t* hit_id, int32_t* shadowed) {
-          const double ox = ((s % n) + 0.5) / n - 0.5, oy = ((s / n) + 0.5) / n - 0.5;
-          return tracer.TraceRay(cam.position, camera_ray(x + ox, y + oy), 1, kInf, depth, camera_medium, 1.0, hit_id,
-                                 shadowed);
-        };
-        // The classification is the first sample's.
-        Vec3 sum{0, 0, 0};
-        int traced = 0;
-        if (sampling.adaptive()) {
-          // The four corners of the grid; sample 0 first.
-          const int corners[4] = {0, n - 1, n * (n - 1), n * n - 1};
-          int32_t hits[4] = {-1, -1, -1, -1};
-          Vec3 c[4];
-          for (int k = 0; k < 4; ++k) c[k] = sample(corners[k], &hits[k], k == 0 ? &img.shadowed[p] : nullptr);
-          img.hit[p] = hits[0];
-          bool flat = hits[1] == hits[0] && hits[2] == hits[0] && hits[3] == hits[0];
-          for (double Vec3::*channel : {&Vec3::x, &Vec3::y, &Vec3::z}) {
-            const double lo = std::min({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
-            const double hi = std::max({c[0].*channel, c[1].*channel, c[2].*channel, c[3].*channel});
-            flat = flat && hi - lo <= sampling.adaptive_threshold;
-          }
-          sum = c[0] + c[1] + c[2] + c[3];
-          traced = 4;
-          if (!flat) {
-            for (int s = 0; s < n * n; ++s)
-              if (s != corners[0] && s != corners[1] && s != corners[2] && s != corners[3])
-                sum = sum + sample(s, nullptr, nullptr);
-            traced = n * n;
-          }
-        } else {
-          for (int s = 0; s < n * n; ++s) {
-            const bool first = s == 0;
-            Vec3 c = sample(s, first ? &img.hit[p] : nullptr, first ? &img.shadowed[p] : nullptr);
-            sum = first ? c : sum + c;
-          }
-          traced = n * n;
-        }
-        // The mean of the samples (for N = 1, the one sample's colour exactly).
-        const double samples = double(traced);
-        const Vec3 c{sum.x / samples, sum.y / samples, sum.z / samples};
+        const Vec3 c = sampler.pixel(x, y, &img.hit[p], &img.shadowed[p]);
         img.rgb[p * 3 + 0] = c.x;
         img.rgb[p * 3 + 1] = c.y;
         img.rgb[p * 3 + 2] = c.z;
