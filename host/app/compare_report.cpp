@@ -81,11 +81,11 @@ void print_layer_comparison(const LayerComparison& c, std::FILE* out) {
                "elsewhere (allowed: 0)\n",
                c.id_differ, c.percent(c.id_differ), c.id_differ_silhouette, c.silhouette_pixels, c.id_differ_inside);
   if (c.layers & kLayerDepth)
-    std::fprintf(out, "layer depth    max relative error %.3g over %zu pixels of the same hit (limit %g): %s\n",
+    std::fprintf(out, "layer depth    max relative error x cos %.3g over %zu pixels of the same hit (limit %g): %s\n",
                  c.depth_max_relative, c.same_hit, kDepthRelative,
                  c.depth_over ? (std::to_string(c.depth_over) + " pixels over").c_str() : ok);
   if (c.layers & kLayerNormal)
-    std::fprintf(out, "layer normal   max component error %.3g over %zu pixels of the same hit (limit %g): %s\n",
+    std::fprintf(out, "layer normal   max component error x cos %.3g over %zu pixels of the same hit (limit %g): %s\n",
                  c.normal_max_error, c.same_hit, kNormalAbsolute,
                  c.normal_over ? (std::to_string(c.normal_over) + " pixels over").c_str() : ok);
   if (c.layers & kLayerAlbedo)

@@ -56,8 +56,13 @@ CompareRun run_compare(const Scene& scene, const RenderOptions& o, int depth, co
   // With layers, both engines give the id too: the other layers are
   // compared where the ids agree.
   const uint8_t rendered_layers = uint8_t(c.layers ? c.layers | kLayerId : 0);
-  c.ref = run_engine("reference", scene, o, depth, &c.reference, FrameContents{PixelFormat::Float, true, rendered_layers},
-                     cancel);
+  c.ref = run_engine("reference", scene, o, depth, &c.reference, {}, cancel);
+  if (c.layers) {
+    const auto t0 = Clock::now();
+    c.reference.layers =
+        render_reference_layers(scene, o.image.width, o.image.height, rendered_layers, cancel, &c.incidence);
+    c.reference.wall_ms += ms_since(t0);
+  }
   if (!image) {
     c.test = run_engine("opencl", scene, o, depth, &c.opencl, FrameContents{PixelFormat::Float, true, rendered_layers},
                         cancel);
@@ -79,7 +84,7 @@ CompareRun run_compare(const Scene& scene, const RenderOptions& o, int depth, co
   c.comparison = compare_images(c.test, c.ref);
   c.verdict = judge(c.comparison, limits);
   if (c.layers) {
-    c.layer_comparison = compare_layers(c.opencl.layers, c.reference.layers);
+    c.layer_comparison = compare_layers(c.opencl.layers, c.reference.layers, &c.incidence);
     if (!c.layer_comparison.pass()) {
       c.verdict.pass = false;
       c.verdict.reason += (c.verdict.reason.empty() ? "" : "; ") + c.layer_comparison.failures();

@@ -2,6 +2,7 @@
 // OpenCL renderer (render/renderer.hpp) or the scalar double reference.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "app/options.hpp"
 #include "eval/compare.hpp"
@@ -46,6 +47,7 @@ struct CompareRun {
   // or the image file's) and the reference's, each rendered with the id
   // added, and their comparison (which decides the verdict too).
   unsigned layers = 0;
+  std::vector<float> incidence;  // the reference's, per pixel (render_reference_layers())
   LayerComparison layer_comparison;
   Thresholds limits;
   Verdict verdict;

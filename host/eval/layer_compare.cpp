@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "image/image.hpp"
@@ -19,13 +20,21 @@ bool on_silhouette(const FrameLayers& ref, int x, int y) {
   return differs(x - 1, y) || differs(x + 1, y) || differs(x, y - 1) || differs(x, y + 1);
 }
 
+// A tolerance as text ("1e-04").
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
 }  // namespace
 
-LayerComparison compare_layers(const FrameLayers& test, const FrameLayers& ref) {
+LayerComparison compare_layers(const FrameLayers& test, const FrameLayers& ref, const std::vector<float>* incidence) {
   if (test.width != ref.width || test.height != ref.height)
     throw std::invalid_argument("compare_layers: size mismatch");
   if (!(ref.layers & kLayerId) || (ref.layers & test.layers) != test.layers)
     throw std::invalid_argument("compare_layers: the reference needs the test's layers and the id");
+  if (incidence && incidence->size() != ref.pixels()) throw std::invalid_argument("compare_layers: incidence size");
   LayerComparison c;
   c.layers = test.layers;
   c.pixels = ref.pixels();
@@ -46,11 +55,12 @@ LayerComparison compare_layers(const FrameLayers& test, const FrameLayers& ref) 
         continue;
       }
       ++c.same_hit;
+      const double cosine = incidence ? double((*incidence)[p]) : 1.0;
       bool bad = false;
       if (test.layers & kLayerDepth) {
         const double z = test.depth[p], z_ref = ref.depth[p];
         bad |= !std::isfinite(z);
-        const double relative = std::isfinite(z) ? std::fabs(z - z_ref) / z_ref : HUGE_VAL;
+        const double relative = std::isfinite(z) ? std::fabs(z - z_ref) * cosine / z_ref : HUGE_VAL;
         c.depth_max_relative = std::max(c.depth_max_relative, relative);
         c.depth_over += relative > kDepthRelative;
       }
@@ -61,8 +71,8 @@ LayerComparison compare_layers(const FrameLayers& test, const FrameLayers& ref) 
           bad |= !std::isfinite(n);
           worst = std::max(worst, std::isfinite(n) ? std::fabs(n - ref.normal[p * 3 + k]) : HUGE_VAL);
         }
-        c.normal_max_error = std::max(c.normal_max_error, worst);
-        c.normal_over += worst > kNormalAbsolute;
+        c.normal_max_error = std::max(c.normal_max_error, worst * cosine);
+        c.normal_over += worst * cosine > kNormalAbsolute;
       }
       if (test.layers & kLayerAlbedo) {
         bool differ = false;
@@ -87,9 +97,10 @@ std::string LayerComparison::failures() const {
   const auto add = [&out](const std::string& clause) { out += (out.empty() ? "" : "; ") + clause; };
   if (id_differ_inside > 0) add("id: " + std::to_string(id_differ_inside) + " pixels differ off the silhouettes");
   if ((layers & kLayerDepth) && depth_over > 0)
-    add("depth: " + std::to_string(depth_over) + " pixels over the relative error 1e-4");
+    add("depth: " + std::to_string(depth_over) + " pixels over the relative error (times cos) " + number(kDepthRelative));
   if ((layers & kLayerNormal) && normal_over > 0)
-    add("normal: " + std::to_string(normal_over) + " pixels with a component off by more than 1e-4");
+    add("normal: " + std::to_string(normal_over) + " pixels with a component off (times cos) by more than " +
+        number(kNormalAbsolute));
   if ((layers & kLayerAlbedo) && albedo_differ > 0)
     add("albedo: " + std::to_string(albedo_differ) + " pixels differ at the 8-bit level");
   if (non_finite > 0) add(std::to_string(non_finite) + " pixels with a NaN, or a finite depth on a miss");

@@ -432,9 +432,10 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
 }
 
 FrameLayers render_reference_layers(const Scene& scene, int width, int height, unsigned layers,
-                                    const CancelFn& cancel) {
+                                    const CancelFn& cancel, std::vector<float>* incidence) {
   const Doing doing("the layers of " + std::to_string(width) + "x" + std::to_string(height) + " with the reference");
   FrameLayers img(width, height, layers);  // every pixel a miss
+  if (incidence) incidence->assign(img.pixels(), 1.0f);
   const Tracer tracer(scene, 0);
   const Camera& cam = scene.camera;
   for (int row = 0; row < height; ++row) {
@@ -458,6 +459,7 @@ FrameLayers render_reference_layers(const Scene& scene, int width, int height, u
         img.albedo[p * 3 + 2] = float(color.z / 255);
       }
       if (layers & kLayerId) img.id[p] = tracer.HitId(h);
+      if (incidence) (*incidence)[p] = float(std::fabs(dot(N, D)) / length(D));
     }
   }
   return img;

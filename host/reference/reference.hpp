@@ -57,7 +57,10 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
 // uses there, the primitive's colour / 255 and its id (as the hit classes
 // number them); +inf, zeros and -1 on a miss. Written apart from the
 // kernel's (kernels/clrt_layers.h), like the rest of this file.
+// `incidence` (optional): each pixel's |cos| of the angle between that ray
+// and the normal (1 on a miss), which scales the layers' tolerances
+// (eval/layer_compare.hpp).
 FrameLayers render_reference_layers(const Scene& scene, int width, int height, unsigned layers,
-                                    const CancelFn& cancel = {});
+                                    const CancelFn& cancel = {}, std::vector<float>* incidence = nullptr);
 
 }  // namespace clrt
