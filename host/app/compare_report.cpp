@@ -59,6 +59,10 @@ nlohmann::ordered_json layer_comparison_json(const LayerComparison& c) {
                            {"id_differ_silhouette_pixels", c.id_differ_silhouette},
                            {"id_differ_inside_pixels", c.id_differ_inside},
                            {"silhouette_pixels", c.silhouette_pixels}};
+  if (!c.ids_compared)
+    for (const char* key : {"id_differ_pixels", "id_differ_percent", "id_differ_silhouette_pixels",
+                            "id_differ_inside_pixels"})
+      j[key] = nullptr;  // (an image without an id layer)
   if (c.layers & kLayerDepth) {
     j["depth_max_relative_error"] = c.depth_max_relative;
     j["depth_over_pixels"] = c.depth_over;
@@ -77,9 +81,14 @@ nlohmann::ordered_json layer_comparison_json(const LayerComparison& c) {
 
 void print_layer_comparison(const LayerComparison& c, std::FILE* out) {
   const char* ok = "within tolerance";
-  std::fprintf(out, "layer id       %zu pixels differ (%.4f%%): %zu on the reference's silhouettes (%zu pixels), %zu "
-               "elsewhere (allowed: 0)\n",
-               c.id_differ, c.percent(c.id_differ), c.id_differ_silhouette, c.silhouette_pixels, c.id_differ_inside);
+  if (!c.ids_compared)
+    std::fprintf(out, "layer id       n/a (the image has no id layer: the others are compared where the reference's "
+                 "id says)\n");
+  else
+    std::fprintf(out,
+                 "layer id       %zu pixels differ (%.4f%%): %zu on the reference's silhouettes (%zu pixels), %zu "
+                 "elsewhere (allowed: 0)\n",
+                 c.id_differ, c.percent(c.id_differ), c.id_differ_silhouette, c.silhouette_pixels, c.id_differ_inside);
   if (c.layers & kLayerDepth)
     std::fprintf(out, "layer depth    max relative error x cos %.3g over %zu pixels of the same hit (limit %g): %s\n",
                  c.depth_max_relative, c.same_hit, kDepthRelative,

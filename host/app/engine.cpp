@@ -76,9 +76,7 @@ CompareRun run_compare(const Scene& scene, const RenderOptions& o, int depth, co
         throw UserError(image_path + ": --aov " + layer_list(c.layers) + ": the image has the layers \"" +
                         (image_layers ? layer_list(image_layers->layers) : std::string()) +
                         "\" (clrt render --aov writes them into an EXR)");
-      c.opencl.layers = *image_layers;
-      if (!(image_layers->layers & kLayerId)) c.opencl.layers.id = c.reference.layers.id;  // (as hit classes)
-      c.opencl.layers.layers |= kLayerId;
+      c.opencl.layers = *image_layers;  // (without an id layer, compared where the reference hits)
     }
   }
   c.comparison = compare_images(c.test, c.ref);

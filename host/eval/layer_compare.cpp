@@ -39,6 +39,7 @@ LayerComparison compare_layers(const FrameLayers& test, const FrameLayers& ref, 
   c.layers = test.layers;
   c.pixels = ref.pixels();
   const bool test_ids = (test.layers & kLayerId) != 0;
+  c.ids_compared = test_ids;
   for (int y = 0; y < ref.height; ++y)
     for (int x = 0; x < ref.width; ++x) {
       const size_t p = size_t(y) * ref.width + x;

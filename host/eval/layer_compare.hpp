@@ -57,6 +57,7 @@ struct LayerComparison {
   // are compared where the ids agree, so the id is always known), and of
   // those the ones off the reference's silhouettes (none allowed).
   size_t id_differ = 0, id_differ_silhouette = 0, id_differ_inside = 0;
+  bool ids_compared = true;  // false: the test has no id layer (an EXR without one); the reference's ids decide
   size_t silhouette_pixels = 0;  // the reference's silhouette pixels (the denominator of their share)
   double depth_max_relative = 0;  // |Z - Z_ref| cos / Z_ref
   size_t depth_over = 0;           // pixels over kDepthRelative
@@ -73,7 +74,8 @@ struct LayerComparison {
 
 // Compares `test` with `reference` (the same size; the test's layers with
 // the reference's ids, which must be there: the reference is rendered with
-// kLayerId added); `incidence`: the reference's cos per pixel
+// kLayerId added; a test without ids is compared where the reference's say
+// the primitive is the same); `incidence`: the reference's cos per pixel
 // (render_reference_layers()), null for 1. std::invalid_argument when they
 // do not fit.
 LayerComparison compare_layers(const FrameLayers& test, const FrameLayers& reference,

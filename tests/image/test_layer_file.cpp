@@ -73,7 +73,8 @@ TEST_CASE("render --aov writes one EXR with the layers' channels, as the referen
   CHECK(clrt::read_layers(dir / "id.exr", 24, 18).layers == clrt::kLayerId);
 }
 
-TEST_CASE("compare --aov reports each layer against the reference, from OpenCL and from an EXR", "[cli][aov][opencl]") {
+TEST_CASE("compare --aov reports each layer against the reference, from OpenCL and from an EXR",
+          "[cli][aov][opencl]") {
   TempDir dir;
   const RunResult r = render({"--aov", "depth,normal,albedo,id", "-o", dir / "g.exr"});
   INFO(r.err);
@@ -94,6 +95,14 @@ TEST_CASE("compare --aov reports each layer against the reference, from OpenCL a
     CHECK_THAT(j.out, Contains("\"aov\":"));
     CHECK_THAT(j.out, Contains("\"depth_max_relative_error\""));
   }
+  // An EXR of the depth alone: compared where the reference's id says.
+  REQUIRE(render({"--aov", "depth", "-o", dir / "depth.exr"}).status == 0);
+  const RunResult depth = run_clrt({"compare", glass(), "--aspect", "image", "--aov", "depth", "--image",
+                                    dir / "depth.exr"});
+  INFO(depth.out << depth.err);
+  CHECK(depth.status == 0);
+  CHECK_THAT(depth.out, Contains("layer id       n/a"));
+  CHECK_THAT(depth.out, Contains("layer depth "));
   // An EXR without layers cannot be compared layer by layer.
   REQUIRE(render({"-o", dir / "plain.exr"}).status == 0);
   const RunResult none = run_clrt({"compare", glass(), "--aspect", "image", "--aov", "depth", "--image",
@@ -118,7 +127,8 @@ TEST_CASE("oiiotool lists the layers' channels", "[cli][aov]") {
   CHECK_THAT(info.out, Contains("12 channel"));
 }
 
-TEST_CASE("--aov errors: 8-bit and colour-only formats, unknown and repeated layers, several frames", "[cli][aov]") {
+TEST_CASE("render with layers refuses 8-bit and colour-only formats, unknown and repeated layers, several frames",
+          "[cli][aov]") {
   TempDir dir;
   struct Case {
     std::vector<std::string> args;
