@@ -29,6 +29,8 @@
  *   CLRT_OUT_RGBA8       store 8-bit RGBA (the canvas rule) instead of float
  *                        RGB (clrt_lanes.h: TO_CANVAS)
  *   CLRT_OUT_CLASSES     store each pixel's hit sphere and shadow mask
+ *   CLRT_OUT_LAYERS      store each pixel's AOV layers (clrt_layers.h; an
+ *                        extra kernel argument, the layers buffer)
  *   CLRT_SUBSAMPLE       the book's subsampling (host/scene/sampling.hpp):
  *                        0 off (default), CLRT_SUBSAMPLE_SHADE or
  *                        CLRT_SUBSAMPLE_INTERPOLATE; a frame is two launches

@@ -138,6 +138,16 @@ typedef struct clrt_triangle {
   clrt_f32 pad_lo[3];
 } clrt_triangle; /* 96 bytes */
 
+/* The AOV layers buffer (-DCLRT_OUT_LAYERS, kernels/clrt_layers.h): floats
+ * per pixel, and where each layer starts among them: the distance along the
+ * camera ray (0 on a miss: the host writes +inf), the unit normal (3), the
+ * hit's colour / 255 (3), and the primitive id's int bits (-1: a miss). */
+#define CLRT_LAYER_FLOATS 8
+#define CLRT_LAYER_DISTANCE 0
+#define CLRT_LAYER_NORMAL 1
+#define CLRT_LAYER_ALBEDO 4
+#define CLRT_LAYER_ID 7
+
 /* Per-pixel ray counters written when CLRT_COUNT_RAYS is defined. */
 typedef struct clrt_ray_counts {
   clrt_i32 primary;

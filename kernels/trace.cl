@@ -17,12 +17,14 @@
  *   clrt_intersect.h  ray-sphere roots, closest hit and any hit
  *   clrt_bvh.h        the same queries through the hierarchy (-DCLRT_BVH)
  *   clrt_shade.h      hit material, ComputeLighting, reflected rays
+ *   clrt_layers.h     the AOV layers' first hit (-DCLRT_OUT_LAYERS)
  * This file holds the camera rays (N x N per pixel with supersampling), the
  * walk over the rays they spawn, the average and the stores. */
 #include "clrt_config.h"
 #include "clrt_flat.h"
 #include "clrt_intersect.h"
 #include "clrt_lanes.h"
+#include "clrt_layers.h"
 #include "clrt_layout.h"
 #include "clrt_math.h"
 #include "clrt_shade.h"
@@ -205,7 +207,11 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
                      __global clrt_ray_counts* ray_counts, const int x0, const int y0, const int tile_w,
                      const int tile_h, __global const clrt_bvh_node* nodes, __global const int* primitives,
                      __global const clrt_plane* planes, __global const clrt_triangle* triangles,
-                     __global const clrt_material* materials, const int pass) {
+                     __global const clrt_material* materials, const int pass
+#ifdef CLRT_OUT_LAYERS
+                     , __global float* layers /* CLRT_LAYER_FLOATS per pixel (clrt_layers.h) */
+#endif
+) {
   const int gx = (int)get_global_id(0), gy = (int)get_global_id(1);
   /* first pixel of this work-item in the tile: its lanes are a block of
    * CLRT_PACKET_COLS x CLRT_PACKET_ROWS pixels, row by row */
@@ -433,6 +439,16 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     result = v3(sum.x / samples, sum.y / samples, sum.z / samples);
   }
 
+#ifdef CLRT_OUT_LAYERS
+  /* The AOV layers: the first hit of the ray through the pixel's centre. */
+  float layer_floats[CLRT_LAYER_FLOATS][CLRT_LANES];
+  {
+    const first_hit_layers first = first_hit(
+        camera, camera_direction(TO_LREAL(x) * viewport_w / (real)W, TO_LREAL(y) * viewport_h / (real)H, m, dz), &scene);
+    layer_values(&first, layer_floats);
+  }
+#endif
+
   /* One pixel per lane; lanes past the tile's edge are dropped. Only what
    * the host asked for is stored (CLRT_OUT_*, clrt_config.h), and the hit
    * ids that subsampling's second launch reads. */
@@ -477,6 +493,9 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     out[idx * 3 + 0] = red[j];
     out[idx * 3 + 1] = green[j];
     out[idx * 3 + 2] = blue[j];
+#endif
+#ifdef CLRT_OUT_LAYERS
+    for (int k = 0; k < CLRT_LAYER_FLOATS; ++k) layers[idx * CLRT_LAYER_FLOATS + k] = layer_floats[k][j];
 #endif
 #if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
     /* an even column's hit is pass 0's, which other work-items read now */

@@ -39,13 +39,16 @@ void add_compare_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 100.0));
   cmd->add_option("--fail-max", limits->fail_max, "Exit 1 if any 8-bit channel differs by more than L levels")
       ->check(CLI::Range(0, 255));
+  add_aov_option(cmd, o->aov);
   cmd->add_flag("--json", *as_json, "Print one JSON object");
   cmd->callback([o, diff, image, as_json, limits] {
     Image img;
+    FrameLayers img_layers;
     if (!image->empty()) {
       img = read_image(*image, kMaxImageEdge, kMaxImagePixels);
       o->image.width = img.width;
       o->image.height = img.height;
+      if (o->layers()) img_layers = read_layers(*image, img.width, img.height);
     }
     o->validate();
     if (!diff->empty()) {
@@ -58,7 +61,8 @@ void add_compare_command(CLI::App& app) {
     }
     Scene scene = o->image.load_scene(o->scene_path);
     const int depth = o->image.effective_depth(scene);
-    const CompareRun run = run_compare(scene, *o, depth, *limits, image->empty() ? nullptr : &img, *image);
+    const CompareRun run =
+        run_compare(scene, *o, depth, *limits, image->empty() ? nullptr : &img, *image, {}, &img_layers);
     const bool classified = run.classified();
     const Comparison& c = run.comparison;
     const EngineRun &ref_run = run.reference, &cl_run = run.opencl;
@@ -94,6 +98,7 @@ void add_compare_command(CLI::App& app) {
       else
         std::fprintf(report_stream(), "flips          n/a (an image file has no hit/shadow data)\n");
       std::fprintf(report_stream(), "NaN/Inf pixels %zu (reference: %zu)\n", c.nan_inf, c.nan_inf_reference);
+      if (run.layers) print_layer_comparison(run.layer_comparison, report_stream());
       if (classified)
         std::fprintf(report_stream(), 
             "time           reference %.1f ms; opencl kernel %.2f ms%s, build %.1f ms%s, render total %.1f ms\n",

@@ -220,6 +220,7 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::Range(0, kMaxImageEdge))
       ->capture_default_str()
       ->group(kDeveloperGroup);
+  add_aov_option(cmd, o->aov);
   add_mpi_timeout_option(cmd);
   // A test hook, not in the help (an empty group): rank R stops taking part
   // in MPI in the middle of its first rows message (dist::FarmSettings).
@@ -228,19 +229,31 @@ void add_render_command(CLI::App& app) {
     o->validate();
     // One name per frame (a pattern's run of '#' is replaced, for one scene too).
     const std::vector<std::string> paths = frame_paths(*out, int(o->scene_paths.size()));
+    const unsigned layers = o->layers();
+    if (layers && (paths.size() > 1 || dist::world().distributed()))
+      throw UserError("--aov writes the layers of one frame: one SCENE, not under mpirun");
     if (paths.size() > 1) return render_frames(*o, paths, *format);
     o->scene_path = o->scene_paths.at(0);
     const std::string& path = paths[0];
     if (dist::world().distributed()) return render_across_ranks(*o, path, *format, *tile_rows, *stall_rank);
     const OutputTarget target = check_output_format(path, *format);  // fail before rendering
+    if (layers) check_layers_output(path, *format);
     Scene scene = o->image.load_scene(o->scene_path);
+    check_layers_fit(scene, layers);
     int depth = o->image.effective_depth(scene);
     EngineRun run;
     // The kernel writes what the file needs: 8-bit RGBA for 8-bit formats,
-    // float colour for float ones, never the per-pixel classification.
-    const FrameContents contents{output_pixel_format(path, *format), /*classes=*/false};
+    // float colour for float ones, the layers asked for, never the
+    // per-pixel classification.
+    const FrameContents contents{output_pixel_format(path, *format), /*classes=*/false, uint8_t(layers)};
     Image img = run_engine(o->engine, scene, *o, depth, &run, contents);
-    write_image(img, path, image_metadata("clrt render", *o, depth, o->engine, run.device), *format);
+    ImageMetadata metadata = image_metadata("clrt render", *o, depth, o->engine, run.device);
+    if (layers) {
+      metadata.push_back({"clrt:aov", layer_list(layers)});
+      write_image(img, run.layers, path, metadata, *format);
+    } else {
+      write_image(img, path, metadata, *format);
+    }
     // The report goes to stderr when the image itself goes to stdout.
     std::FILE* report = target.kind == OutputKind::File ? stdout : stderr;
     if (report == stderr && quiet()) return;  // --quiet: only the image

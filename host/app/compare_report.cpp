@@ -51,6 +51,58 @@ std::string format_psnr(double psnr) {
   return buf;
 }
 
+nlohmann::ordered_json layer_comparison_json(const LayerComparison& c) {
+  nlohmann::ordered_json j{{"layers", layer_list(c.layers)},
+                           {"same_hit_pixels", c.same_hit},
+                           {"id_differ_pixels", c.id_differ},
+                           {"id_differ_percent", c.percent(c.id_differ)},
+                           {"id_differ_silhouette_pixels", c.id_differ_silhouette},
+                           {"id_differ_inside_pixels", c.id_differ_inside},
+                           {"silhouette_pixels", c.silhouette_pixels}};
+  if (!c.ids_compared)
+    for (const char* key : {"id_differ_pixels", "id_differ_percent", "id_differ_silhouette_pixels",
+                            "id_differ_inside_pixels"})
+      j[key] = nullptr;  // (an image without an id layer)
+  if (c.layers & kLayerDepth) {
+    j["depth_max_relative_error"] = c.depth_max_relative;
+    j["depth_over_pixels"] = c.depth_over;
+    j["depth_tolerance_relative"] = kDepthRelative;
+  }
+  if (c.layers & kLayerNormal) {
+    j["normal_max_error"] = c.normal_max_error;
+    j["normal_over_pixels"] = c.normal_over;
+    j["normal_tolerance"] = kNormalAbsolute;
+  }
+  if (c.layers & kLayerAlbedo) j["albedo_differ_pixels"] = c.albedo_differ;
+  j["non_finite_pixels"] = c.non_finite;
+  j["pass"] = c.pass();
+  return j;
+}
+
+void print_layer_comparison(const LayerComparison& c, std::FILE* out) {
+  const char* ok = "within tolerance";
+  if (!c.ids_compared)
+    std::fprintf(out, "layer id       n/a (the image has no id layer: the others are compared where the reference's "
+                 "id says)\n");
+  else
+    std::fprintf(out,
+                 "layer id       %zu pixels differ (%.4f%%): %zu on the reference's silhouettes (%zu pixels), %zu "
+                 "elsewhere (allowed: 0)\n",
+                 c.id_differ, c.percent(c.id_differ), c.id_differ_silhouette, c.silhouette_pixels, c.id_differ_inside);
+  if (c.layers & kLayerDepth)
+    std::fprintf(out, "layer depth    max relative error x cos %.3g over %zu pixels of the same hit (limit %g): %s\n",
+                 c.depth_max_relative, c.same_hit, kDepthRelative,
+                 c.depth_over ? (std::to_string(c.depth_over) + " pixels over").c_str() : ok);
+  if (c.layers & kLayerNormal)
+    std::fprintf(out, "layer normal   max component error x cos %.3g over %zu pixels of the same hit (limit %g): %s\n",
+                 c.normal_max_error, c.same_hit, kNormalAbsolute,
+                 c.normal_over ? (std::to_string(c.normal_over) + " pixels over").c_str() : ok);
+  if (c.layers & kLayerAlbedo)
+    std::fprintf(out, "layer albedo   %zu of %zu pixels of the same hit differ at the 8-bit level (limit 0)\n",
+                 c.albedo_differ, c.same_hit);
+  if (c.non_finite) std::fprintf(out, "layer values   %zu pixels with a NaN, or a finite depth on a miss\n", c.non_finite);
+}
+
 nlohmann::ordered_json compare_json(const CompareRun& r, const RenderOptions& o) {
   const Comparison& c = r.comparison;
   const bool classified = r.classified();
@@ -83,6 +135,10 @@ nlohmann::ordered_json compare_json(const CompareRun& r, const RenderOptions& o)
     j["image"] = r.image;
   j.update(comparison_json(c));
   if (!classified) j["hit_flip_pixels"] = j["shadow_flip_pixels"] = nullptr;
+  if (r.layers) {
+    j["aov"] = layer_comparison_json(r.layer_comparison);
+    j["verdict"] = r.verdict.pass ? "pass" : "fail";
+  }
   if (r.limits.any()) {
     j["fail_percent"] =
         r.limits.fail_percent >= 0 ? nlohmann::ordered_json(r.limits.fail_percent) : nlohmann::ordered_json();

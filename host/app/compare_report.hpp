@@ -2,6 +2,7 @@
 // each metric (every JSON key and CSV column of a comparison comes from it)
 // and the PSNR as text.
 #pragma once
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -10,6 +11,7 @@
 #include "app/engine.hpp"
 #include "app/options.hpp"
 #include "eval/compare.hpp"
+#include "eval/layer_compare.hpp"
 #include "util/csv.hpp"
 
 namespace clrt {
@@ -29,6 +31,12 @@ void comparison_csv(CsvTable& t, const Comparison& c, const std::string& prefix 
 
 // "inf" for an infinite PSNR, otherwise the number with 2 decimals.
 std::string format_psnr(double psnr);
+
+// A LayerComparison as JSON: {"layers": "depth,...,id", "id_differ_pixels",
+// ..., "pass"} (docs/guide/output.md), and as the text report's lines, one
+// per layer with its tolerance.
+nlohmann::ordered_json layer_comparison_json(const LayerComparison& c);
+void print_layer_comparison(const LayerComparison& c, std::FILE* out);
 
 // `clrt compare --json`'s object (docs/guide/output.md): the report header,
 // the options of `o` and the run's figures, the metrics above, and the

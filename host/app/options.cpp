@@ -245,6 +245,22 @@ void add_override_option(CLI::App* cmd, std::vector<std::string>& overrides) {
       ->take_all();
 }
 
+void add_aov_option(CLI::App* cmd, std::string& aov) {
+  cmd->add_option("--aov", aov,
+                  "AOV layers to write beside the colour, comma-separated: depth (Z), normal (N.X,N.Y,N.Z), albedo "
+                  "(albedo.R,G,B), id (primitive id, -1 on a miss); of the first hit of the ray through each pixel's "
+                  "centre; into one multi-layer EXR")
+      ->type_name("LIST")
+      ->check([](const std::string& list) {
+        try {
+          (void)parse_layers(list);
+          return std::string();
+        } catch (const UserError& e) {
+          return std::string(e.what());
+        }
+      });
+}
+
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help) {
   cmd->add_option("--repeat", repeat, help)->check(CLI::Range(1, kMaxRepeat))->capture_default_str();
 }

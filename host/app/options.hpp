@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cl/device.hpp"
+#include "image/layers.hpp"
 #include "eval/accuracy.hpp"
 #include "eval/sweep.hpp"
 #include "render/renderer.hpp"
@@ -131,6 +132,10 @@ void add_mpi_timeout_option(CLI::App* cmd);
 // parse_overrides when the command runs).
 void add_override_option(CLI::App* cmd, std::vector<std::string>& overrides);
 
+// --aov LIST (render, compare): the AOV layers (image/layers.hpp) into
+// `aov`, checked by parse_layers() as CLI11 reads it.
+void add_aov_option(CLI::App* cmd, std::string& aov);
+
 // --repeat N: timed runs, in [1, kMaxRepeat].
 constexpr int kMaxRepeat = 1000;
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help);
@@ -154,6 +159,9 @@ struct RenderOptions {
   DeviceOptions device;
   KernelOptions kernel;
   LaunchOptions launch;
+  // --aov LIST (render, compare; add_aov_option): "" = no layers.
+  std::string aov;
+  unsigned layers() const { return aov.empty() ? 0 : parse_layers(aov); }
 
   // Adds SCENE (SCENE... into scene_paths with several_scenes) and every
   // group (--engine only with_engine).

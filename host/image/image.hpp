@@ -23,7 +23,12 @@ enum class PixelFormat {
 struct FrameContents {
   PixelFormat pixels = PixelFormat::Float;
   bool classes = true;  // hit and shadowed
-  bool operator==(const FrameContents& o) const { return pixels == o.pixels && classes == o.classes; }
+  // AOV layers (image/layers.hpp: kLayer* bits; 0 none): the renderer
+  // keeps them in a FrameLayers beside the image (Renderer::layers()).
+  uint8_t layers = 0;
+  bool operator==(const FrameContents& o) const {
+    return pixels == o.pixels && classes == o.classes && layers == o.layers;
+  }
   bool operator!=(const FrameContents& o) const { return !(*this == o); }
 };
 

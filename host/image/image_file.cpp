@@ -261,23 +261,92 @@ PixelFormat output_pixel_format(const std::string& path, const std::string& form
   return is_float_ext(format_ext(path, kind, format_arg(format))) ? PixelFormat::Float : PixelFormat::Rgba8;
 }
 
+void check_layers_output(const std::string& path, const std::string& format_in) {
+  const OutputKind kind = path == "-" ? OutputKind::Stdout : OutputKind::File;
+  const std::string ext = format_ext(path, kind, format_arg(format_in));
+  if (ext == "exr") return;
+  if (kLeanBuild)
+    throw UserError(path + ": --aov writes a multi-layer EXR file, through OpenImageIO, which this build lacks (" +
+                    kLeanBuildNote + ")");
+  const std::string holds = is_float_ext(ext) ? "float RGB only" : "8-bit colour only";
+  throw UserError(path + ": --aov writes its layers into one multi-layer EXR file; ." + ext + " holds " + holds +
+                  " (use .exr)");
+}
+
+namespace {
+
+// The bytes of a multi-layer EXR of `img`: R, G, B (value / 255, as every
+// float file), A = 1 (the background is part of the picture), then the
+// layers' channels (layers.hpp), all float32.
+std::string layer_file_bytes(const Image& img, const FrameLayers& frame, const std::string& path, OutputKind kind,
+                             const ImageMetadata& metadata, const std::string& format) {
+  check_layers_output(path, format);
+  check_image_format(path, kind, format);
+  if (!frame.holds(img.width, img.height, frame.layers))
+    throw std::logic_error("write_image: " + path + ": layers of another frame");
+  const FilePixels px = file_pixels(img, /*floating=*/true, metadata, path);
+  const unsigned layers = frame.layers;
+  std::vector<std::string> channels{"R", "G", "B", "A"};
+  for (const std::string& name : layer_channels(layers)) channels.push_back(name);
+  const size_t stride = channels.size(), n = img.pixels();
+  std::vector<float> data(n * stride);
+  for (size_t p = 0; p < n; ++p) {
+    float* d = &data[p * stride];
+    for (int c = 0; c < 3; ++c) d[c] = px.unit[p * 3 + c];
+    d[3] = 1.0f;
+    size_t k = 4;
+    if (layers & kLayerDepth) d[k++] = frame.depth[p];
+    if (layers & kLayerNormal)
+      for (int c = 0; c < 3; ++c) d[k++] = frame.normal[p * 3 + c];
+    if (layers & kLayerAlbedo)
+      for (int c = 0; c < 3; ++c) d[k++] = frame.albedo[p * 3 + c];
+    if (layers & kLayerId) d[k++] = float(frame.id[p]);  // (exact: ids < kMaxLayerIds)
+  }
+  const std::string name = format_name(path, kind, format);
+  imageio::Module& io = imageio::module();
+  std::string bytes;
+  std::string err;
+  if (io.in_memory(name)) {
+    err = io.encode_channels(name, "", img.width, img.height, channels, data.data(), px.metadata, &bytes);
+  } else {
+    ScratchFile scratch("out.exr");
+    err = io.encode_channels(name, scratch.path(), img.width, img.height, channels, data.data(), px.metadata, nullptr);
+    if (err.empty()) bytes = scratch.read();
+  }
+  if (!err.empty()) encode_failed(path, err);
+  return bytes;
+}
+
+}  // namespace
+
 // An image's file bytes, for write_image() (a file at `path`, of `kind`) and
 // encode_image() (a regular file's bytes, in memory).
-std::string file_bytes(const Image& img, const std::string& path, OutputKind kind, const ImageMetadata& metadata,
-                       const std::string& format_in) {
+std::string file_bytes(const Image& img, const FrameLayers* layers, const std::string& path, OutputKind kind,
+                       const ImageMetadata& metadata, const std::string& format_in) {
   const std::string format = format_arg(format_in);
+  if (layers && layers->layers) return layer_file_bytes(img, *layers, path, kind, metadata, format);
   const bool floating = output_pixel_format(path, format) == PixelFormat::Float;
   const FilePixels px = file_pixels(img, floating, metadata, path);
   return encode_pixels(path, kind, format, img.width, img.height, px.type, px.data(), px.metadata);
 }
 
 void write_image(const Image& img, const std::string& path, const ImageMetadata& metadata, const std::string& format) {
-  write_output(path, file_bytes(img, path, resolve_output(path).kind, metadata, format));
+  write_output(path, file_bytes(img, nullptr, path, resolve_output(path).kind, metadata, format));
+}
+
+void write_image(const Image& img, const FrameLayers& layers, const std::string& path, const ImageMetadata& metadata,
+                 const std::string& format) {
+  write_output(path, file_bytes(img, &layers, path, resolve_output(path).kind, metadata, format));
 }
 
 std::string encode_image(const Image& img, const std::string& path, const ImageMetadata& metadata,
                          const std::string& format) {
-  return file_bytes(img, path, OutputKind::File, metadata, format);
+  return file_bytes(img, nullptr, path, OutputKind::File, metadata, format);
+}
+
+std::string encode_image(const Image& img, const FrameLayers& layers, const std::string& path,
+                         const ImageMetadata& metadata, const std::string& format) {
+  return file_bytes(img, &layers, path, OutputKind::File, metadata, format);
 }
 
 ImageMetadata read_metadata(const std::string& path, const std::vector<std::string>& keys) {
@@ -366,6 +435,55 @@ Image read_image(const std::string& path, int max_edge, long long max_pixels) {
   if (!err.empty()) throw UserError(path + ": cannot read image: " + err);
   for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = floating ? double(f[i]) * scale : double(u8[i]);
   return img;
+}
+
+FrameLayers read_layers(const std::string& path, int width, int height) {
+  std::string err;
+  auto in = imageio::module().open(path, &err);
+  if (!in) throw UserError(path + ": cannot read image: " + err);
+  if (in->width() != width || in->height() != height)
+    throw UserError(path + ": cannot read layers: the image is " + std::to_string(in->width()) + "x" +
+                    std::to_string(in->height()) + ", not " + std::to_string(width) + "x" + std::to_string(height));
+  const std::vector<std::string> names = in->channel_names();
+  const auto index_of = [&](const std::string& name) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    return it == names.end() ? -1 : int(it - names.begin());
+  };
+  unsigned layers = 0;
+  for (const std::string& layer : layer_names()) {
+    const unsigned bit = layer_bit(layer);
+    size_t found = 0;
+    const std::vector<std::string> channels = layer_channels(bit);
+    for (const std::string& channel : channels) found += index_of(channel) >= 0;
+    if (found == channels.size()) layers |= bit;
+    else if (found > 0) throw UserError(path + ": layer " + layer + " has only some of its channels");
+  }
+  FrameLayers out(width, height, layers);
+  if (!layers) return out;
+  const size_t n = out.pixels(), stride = names.size();
+  std::vector<float> all(n * stride);
+  err = in->read_channels(0, int(stride), all.data());
+  if (!err.empty()) throw UserError(path + ": cannot read layers: " + err);
+  // each channel's place among the file's (-1: a layer it lacks)
+  const int z = index_of("Z"), id_channel = index_of("id");
+  const int xyz[3] = {index_of("N.X"), index_of("N.Y"), index_of("N.Z")};
+  const int rgb[3] = {index_of("albedo.R"), index_of("albedo.G"), index_of("albedo.B")};
+  for (size_t p = 0; p < n; ++p) {
+    const float* pixel = &all[p * stride];
+    if (layers & kLayerDepth) out.depth[p] = pixel[z];
+    for (int c = 0; c < 3; ++c) {
+      if (layers & kLayerNormal) out.normal[p * 3 + c] = pixel[xyz[c]];
+      if (layers & kLayerAlbedo) out.albedo[p * 3 + c] = pixel[rgb[c]];
+    }
+    if (layers & kLayerId) {
+      const float id = pixel[id_channel];
+      if (!(id >= -1 && id < float(kMaxLayerIds) && id == std::floor(id)))
+        throw UserError(path + ": cannot read layers: the id channel holds " + std::to_string(id) +
+                        ", not a primitive id");
+      out.id[p] = int32_t(id);
+    }
+  }
+  return out;
 }
 
 void write_rgb8(const std::vector<uint8_t>& rgb, int width, int height, const std::string& path,

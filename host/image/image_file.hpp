@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "image/image.hpp"
+#include "image/layers.hpp"
 #include "util/output_file.hpp"
 
 namespace clrt {
@@ -45,6 +46,11 @@ const std::vector<std::string>& written_without_asking();
 // The colour OUT needs: Float for float formats (exr, hdr, pfm), else
 // Rgba8 (render asks the kernel for exactly this).
 PixelFormat output_pixel_format(const std::string& path, const std::string& format = "");
+// UserError unless OUT (or `format`) is an EXR file, the one format that
+// holds AOV layers (image/layers.hpp): 8-bit formats, HDR and PFM hold
+// colour only, and a lean build writes no EXR. render --aov checks this
+// before rendering.
+void check_layers_output(const std::string& path, const std::string& format = "");
 // Writes via a temporary file in the same directory and an atomic rename, so
 // a failed write never leaves a half-written OUT. Float formats get the
 // unclamped float colour / 255 (an Rgba8 frame is a logic_error there); the
@@ -54,6 +60,12 @@ PixelFormat output_pixel_format(const std::string& path, const std::string& form
 // comments in PPM and HDR (`# key=value`); BMP and PFM have no place for it.
 void write_image(const Image& img, const std::string& path, const ImageMetadata& metadata = {},
                  const std::string& format = "");
+// The same with the frame's AOV layers (layers.layers not 0): one
+// multi-layer EXR, R, G, B, A (1), then the layers' channels
+// (layer_channels()), all float32; any other format is
+// check_layers_output()'s UserError.
+void write_image(const Image& img, const FrameLayers& layers, const std::string& path,
+                 const ImageMetadata& metadata = {}, const std::string& format = "");
 // The bytes write_image() would write to the regular file `path`, made
 // without touching the file system (`path` picks the format unless `format`
 // does, and names the file in messages): for a rank of an MPI job that
@@ -62,6 +74,8 @@ void write_image(const Image& img, const std::string& path, const ImageMetadata&
 // (PNG). UserError for a format clrt cannot write.
 std::string encode_image(const Image& img, const std::string& path, const ImageMetadata& metadata = {},
                          const std::string& format = "");
+std::string encode_image(const Image& img, const FrameLayers& layers, const std::string& path,
+                         const ImageMetadata& metadata = {}, const std::string& format = "");
 // Reads the first three channels of an image file (untrusted input) on the
 // book's 0..255 scale: integer formats as 8-bit values; float formats x 255
 // where the file says 1.0 is white (clrt:white in EXR, clrt's comment in
@@ -70,6 +84,12 @@ std::string encode_image(const Image& img, const std::string& path, const ImageM
 // UserError naming the file when it cannot be read, has fewer than 3
 // channels, or is larger than max_edge per edge or max_pixels.
 Image read_image(const std::string& path, int max_edge, long long max_pixels);
+// The AOV layers of an image file that clrt render --aov wrote (untrusted
+// input): the layers whose channels (layer_channels()) it has, every one of
+// a layer's channels or none; a layers.layers of 0 when it has none. The
+// id channel must hold integers >= -1. UserError naming the file otherwise,
+// and for a size other than width x height.
+FrameLayers read_layers(const std::string& path, int width, int height);
 // The extension of `path`'s file name, lowercase, without the dot ("" for
 // none): what picks an image's or a plot's format.
 std::string lowercase_extension(const std::string& path);

@@ -23,7 +23,7 @@ namespace imageio {
 // Bump on every change to the classes below: a module of another version
 // then refuses to load ("not a clrt imaging module of this build") instead
 // of crashing.
-constexpr int kImageIoAbi = 2;
+constexpr int kImageIoAbi = 3;
 // The module's one exported function, `extern "C" Module* clrt_imageio(int
 // abi)`: its module, or null when `abi` is not the module's kImageIoAbi.
 constexpr const char* kImageIoEntry = "clrt_imageio";
@@ -57,6 +57,11 @@ class Reader {
   // Reads the first three channels, width*height*3 values of `type`, into
   // `data`. Returns "" or the error.
   virtual std::string read_rgb(PixelType type, void* data) = 0;
+  // The channels' names, in the file's order ("R", "G", "B", "Z", ...).
+  virtual std::vector<std::string> channel_names() const = 0;
+  // Reads channels [begin, end) as float, width*height*(end - begin) values
+  // interleaved, into `data`. Returns "" or the error.
+  virtual std::string read_channels(int begin, int end, float* data) = 0;
 };
 
 // An RGB float picture being drawn (charts), row 0 at the top.
@@ -84,6 +89,12 @@ class Module {
   virtual bool in_memory(const std::string& name) = 0;
   virtual std::string encode(const std::string& name, const std::string& file, int width, int height, PixelType type,
                              const void* data, const Attributes& attributes, std::string* bytes) = 0;
+  // The same for float pixels of any number of channels, named `channels`
+  // (data: width*height*channels.size() floats, interleaved): a multi-layer
+  // EXR, whose readers group "albedo.R", "albedo.G", ... into a layer.
+  virtual std::string encode_channels(const std::string& name, const std::string& file, int width, int height,
+                                      const std::vector<std::string>& channels, const float* data,
+                                      const Attributes& attributes, std::string* bytes) = 0;
   // Opens an image file; null with *error set when it cannot be read.
   virtual std::unique_ptr<Reader> open(const std::string& path, std::string* error) = 0;
   virtual TextBox text_size(const std::string& s, int size, const std::string& font) = 0;

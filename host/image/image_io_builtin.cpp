@@ -47,6 +47,13 @@ class PnmReader final : public Reader {
   bool floating() const override { return pfm_; }
   std::string attribute(const std::string&) const override { return ""; }  // (PPM comments: image_file.cpp)
 
+  std::vector<std::string> channel_names() const override {
+    return channels_ == 1 ? std::vector<std::string>{"Y"} : std::vector<std::string>{"R", "G", "B"};
+  }
+  std::string read_channels(int begin, int end, float* data) override {
+    if (begin != 0 || end != 3) return "PPM and PFM files hold R, G, B only";
+    return read_rgb(PixelType::Float, data);
+  }
   std::string read_rgb(PixelType type, void* data) override {
     if (channels_ < 3) return "fewer than 3 channels";
     const size_t pixels = size_t(width_) * size_t(height_);
@@ -147,6 +154,10 @@ class BuiltinModule final : public Module {
     const size_t n = size_t(width) * size_t(height) * 3;
     bytes->append(static_cast<const char*>(data), n);
     return "";
+  }
+  std::string encode_channels(const std::string&, const std::string&, int, int, const std::vector<std::string>&,
+                              const float*, const Attributes&, std::string*) override {
+    return std::string(kLeanBuildNote) + ": no multi-layer EXR (OpenImageIO)";
   }
   std::unique_ptr<Reader> open(const std::string& path, std::string* error) override { return open_pnm(path, error); }
   TextBox text_size(const std::string&, int, const std::string&) override {

@@ -56,6 +56,15 @@ class OiioReader final : public Reader {
     if (in_->read_image(0, 0, 0, 3, oiio_type(type), data)) return "";
     return or_unknown(in_->geterror());
   }
+  std::vector<std::string> channel_names() const override {
+    const auto& names = in_->spec().channelnames;
+    return std::vector<std::string>(names.begin(), names.end());
+  }
+  std::string read_channels(int begin, int end, float* data) override {
+    if (begin < 0 || end > channels() || begin >= end) return "no channels " + std::to_string(begin) + ".." + std::to_string(end);
+    if (in_->read_image(0, 0, begin, end, OIIO::TypeDesc::FLOAT, data)) return "";
+    return or_unknown(in_->geterror());
+  }
 
  private:
   std::unique_ptr<OIIO::ImageInput> in_;
@@ -113,12 +122,32 @@ class OiioModule final : public Module {
                      const Attributes& attributes, std::string* bytes) override {
     OIIO::ImageSpec spec(w, h, 3, oiio_type(type));
     for (const auto& [key, value] : attributes) spec.attribute(key, value);
+    return write(name, file, spec, oiio_type(type), data, bytes);
+  }
+
+  std::string encode_channels(const std::string& name, const std::string& file, int w, int h,
+                              const std::vector<std::string>& channels, const float* data,
+                              const Attributes& attributes, std::string* bytes) override {
+    OIIO::ImageSpec spec(w, h, int(channels.size()), OIIO::TypeDesc::FLOAT);
+    spec.channelnames.assign(channels.begin(), channels.end());
+    spec.alpha_channel = spec.z_channel = -1;  // (named below where the file has one)
+    for (size_t c = 0; c < channels.size(); ++c) {
+      if (channels[c] == "A") spec.alpha_channel = int(c);
+      if (channels[c] == "Z") spec.z_channel = int(c);
+    }
+    for (const auto& [key, value] : attributes) spec.attribute(key, value);
+    return write(name, file, spec, OIIO::TypeDesc::FLOAT, data, bytes);
+  }
+
+  // Writes `data` as `spec` says into *bytes (file empty) or `file`.
+  static std::string write(const std::string& name, const std::string& file, const OIIO::ImageSpec& spec,
+                           OIIO::TypeDesc type, const void* data, std::string* bytes) {
     std::vector<unsigned char> buf;
     OIIO::Filesystem::IOVecOutput memory(buf);
     auto out = file.empty() ? OIIO::ImageOutput::create(name, &memory) : OIIO::ImageOutput::create(name);
     if (!out) return or_unknown(OIIO::geterror());
     const std::string& target = file.empty() ? name : file;
-    if (!(out->open(target, spec) && out->write_image(oiio_type(type), data) && out->close()))
+    if (!(out->open(target, spec) && out->write_image(type, data) && out->close()))
       return or_unknown(out->geterror());
     if (file.empty()) bytes->assign(buf.begin(), buf.end());
     return "";

@@ -135,6 +135,20 @@ class Tracer {
 
   static Vec3 ReflectRay(Vec3 R, Vec3 N) { return 2 * dot(N, R) * N - R; }
 
+  // The unit normal that shading uses at P, the hit h of a ray along D: a
+  // sphere's outward normal; a plane's normal or a triangle's
+  // (v1 - v0) x (v2 - v0), turned against the ray (two-sided).
+  static Vec3 ShadingNormal(const Hit& h, Vec3 P, Vec3 D) {
+    Vec3 N;
+    if (h.sphere) {
+      N = P - h.sphere->center;
+    } else {
+      N = h.plane ? h.plane->normal : cross(h.triangle->v1 - h.triangle->v0, h.triangle->v2 - h.triangle->v0);
+      if (dot(N, D) > 0) N = -1.0 * N;
+    }
+    return (1.0 / length(N)) * N;
+  }
+
   double ComputeLighting(Vec3 P, Vec3 N, Vec3 V, double s, int32_t* shadowed) const {
     double i = 0;
     double length_n = length(N);
@@ -256,8 +270,7 @@ class Tracer {
     if (hit) *hit = HitId(h);
     Vec3 P = O + h.t * D;
     if (!h.sphere) return FlatColor(h, P, D, depth, medium, weight, shadowed);
-    Vec3 N = P - h.sphere->center;
-    N = (1.0 / length(N)) * N;
+    Vec3 N = ShadingNormal(h, P, D);
     Vec3 V = -1.0 * D;
     Vec3 local_color = ComputeLighting(P, N, V, h.sphere->specular, shadowed) * h.sphere->color;
     double r = h.sphere->reflective;
@@ -287,9 +300,7 @@ class Tracer {
   // then the book's shading and reflection as for a sphere.
   Vec3 FlatColor(const Hit& h, Vec3 P, Vec3 D, int depth, double medium, double weight, int32_t* shadowed) const {
     const Material& m = h.plane ? h.plane->material : h.triangle->material;
-    Vec3 N = h.plane ? h.plane->normal : cross(h.triangle->v1 - h.triangle->v0, h.triangle->v2 - h.triangle->v0);
-    if (dot(N, D) > 0) N = -1.0 * N;
-    N = (1.0 / length(N)) * N;
+    Vec3 N = ShadingNormal(h, P, D);
     Vec3 V = -1.0 * D;
     Vec3 local_color = ComputeLighting(P, N, V, m.specular, shadowed) * m.color;
     double r = m.reflective;
@@ -303,6 +314,15 @@ class Tracer {
   const Scene& s_;
   double min_weight_;
 };
+
+// The camera ray's direction through canvas point (cx, cy) of a width x
+// height frame: CanvasToViewport, then the camera rotation.
+Vec3 CameraRay(const Camera& cam, int width, int height, double cx, double cy) {
+  const auto& m = cam.rotation;
+  const Vec3 d{cx * cam.viewport_w / width, cy * cam.viewport_h / height, cam.projection_plane_d};
+  return Vec3{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
+              m[6] * d.x + m[7] * d.y + m[8] * d.z};
+}
 
 // The camera's rays and a pixel's samples (chapter 5's supersampling).
 class PixelSampler {
@@ -319,14 +339,8 @@ class PixelSampler {
 
   double camera_medium() const { return camera_medium_; }
 
-  // The camera ray's direction through canvas point (cx, cy):
-  // CanvasToViewport, then the camera rotation.
-  Vec3 ray(double cx, double cy) const {
-    const auto& m = cam_.rotation;
-    const Vec3 d{cx * cam_.viewport_w / width_, cy * cam_.viewport_h / height_, cam_.projection_plane_d};
-    return Vec3{m[0] * d.x + m[1] * d.y + m[2] * d.z, m[3] * d.x + m[4] * d.y + m[5] * d.z,
-                m[6] * d.x + m[7] * d.y + m[8] * d.z};
-  }
+  // The camera ray's direction through canvas point (cx, cy).
+  Vec3 ray(double cx, double cy) const { return CameraRay(cam_, width_, height_, cx, cy); }
 
   // Canvas point (x, y)'s colour: the mean of its samples (for N = 1, the
   // one sample's colour exactly). The classification - the primary hit and
@@ -443,6 +457,40 @@ Image render_reference(const Scene& scene, int width, int height, int depth, Sam
         img.rgb[p * 3 + 1] = c.y;
         img.rgb[p * 3 + 2] = c.z;
       }
+    }
+  }
+  return img;
+}
+
+FrameLayers render_reference_layers(const Scene& scene, int width, int height, unsigned layers,
+                                    const CancelFn& cancel, std::vector<float>* incidence) {
+  const Doing doing("the layers of " + std::to_string(width) + "x" + std::to_string(height) + " with the reference");
+  FrameLayers img(width, height, layers);  // every pixel a miss
+  if (incidence) incidence->assign(img.pixels(), 1.0f);
+  const Tracer tracer(scene, 0);
+  const Camera& cam = scene.camera;
+  for (int row = 0; row < height; ++row) {
+    if (cancel && cancel()) throw Cancelled("reference render cancelled");
+    const int y = height / 2 - 1 - row;
+    for (int col = 0; col < width; ++col) {
+      const int x = col - width / 2;
+      const Vec3 D = CameraRay(cam, width, height, x, y);
+      const Hit h = tracer.ClosestIntersection(cam.position, D, 1, kInf);
+      if (!h.found()) continue;  // the misses' values, as assigned above
+      const size_t p = size_t(row) * width + col;
+      const Vec3 P = cam.position + h.t * D;
+      const Vec3 N = Tracer::ShadingNormal(h, P, D);
+      const Vec3 color = h.sphere ? h.sphere->color : h.plane ? h.plane->material.color : h.triangle->material.color;
+      if (layers & kLayerDepth) img.depth[p] = float(h.t * length(D));
+      if (layers & kLayerNormal) {
+        img.normal[p * 3 + 0] = float(N.x), img.normal[p * 3 + 1] = float(N.y), img.normal[p * 3 + 2] = float(N.z);
+      }
+      if (layers & kLayerAlbedo) {
+        img.albedo[p * 3 + 0] = float(color.x / 255), img.albedo[p * 3 + 1] = float(color.y / 255);
+        img.albedo[p * 3 + 2] = float(color.z / 255);
+      }
+      if (layers & kLayerId) img.id[p] = tracer.HitId(h);
+      if (incidence) (*incidence)[p] = float(std::fabs(dot(N, D)) / length(D));
     }
   }
   return img;

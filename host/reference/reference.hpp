@@ -3,6 +3,7 @@
 // chapters 2-5, and its web demo). Deliberately independent of the kernel.
 #pragma once
 #include "image/image.hpp"
+#include "image/layers.hpp"
 #include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 #include "util/progress.hpp"
@@ -48,5 +49,18 @@ namespace clrt {
 // (util/error.hpp) is thrown.
 Image render_reference(const Scene& scene, int width, int height, int depth, Sampling sampling = {},
                        const CancelFn& cancel = {});
+
+// The AOV layers `layers` (image/layers.hpp: kLayer* bits) of a width x
+// height frame of `scene`: for each pixel the first hit of the camera ray
+// through the canvas point (x, y) - the book's ClosestIntersection from the
+// camera, t in (1, inf) - its distance t |D|, the unit normal that shading
+// uses there, the primitive's colour / 255 and its id (as the hit classes
+// number them); +inf, zeros and -1 on a miss. Written apart from the
+// kernel's (kernels/clrt_layers.h), like the rest of this file.
+// `incidence` (optional): each pixel's |cos| of the angle between that ray
+// and the normal (1 on a miss), which scales the layers' tolerances
+// (eval/layer_compare.hpp).
+FrameLayers render_reference_layers(const Scene& scene, int width, int height, unsigned layers,
+                                    const CancelFn& cancel = {}, std::vector<float>* incidence = nullptr);
 
 }  // namespace clrt

@@ -137,6 +137,9 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
   // colour for Float and Unit frames: Unit is scaled on the host).
   if (cfg.output.pixels == PixelFormat::Rgba8) options.push_back("-DCLRT_OUT_RGBA8");
   if (cfg.output.classes) options.push_back("-DCLRT_OUT_CLASSES");
+  // Any AOV layer: the kernel stores all of them (one program serves every
+  // set of layers; the host keeps the ones asked for).
+  if (cfg.output.layers) options.push_back("-DCLRT_OUT_LAYERS");
   if (cfg.subsample != Subsample::Off)
     options.push_back(define("CLRT_SUBSAMPLE", cfg.subsample == Subsample::Shade ? 1 : 2));
   if (int lanes = kernel_lanes(cfg); lanes > 1) options.push_back(define("CLRT_LANES", lanes));

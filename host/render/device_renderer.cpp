@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <limits>
 
 #include "cl/kernel_source.hpp"
 #include "cl/program.hpp"
@@ -135,6 +136,7 @@ void DeviceRenderer::ensure_slot(ResultSlot& slot, size_t pixels) {
       (subsample ? CL_MEM_READ_WRITE : CL_MEM_WRITE_ONLY) | (map_results_ ? CL_MEM_ALLOC_HOST_PTR : 0);
   slot.colors = cl::Buffer(context_, flags, pixels * colour_bytes_per_pixel());
   slot.classes = cl::Buffer(context_, flags, (config_.output.classes || subsample ? pixels : 1) * 2 * sizeof(cl_int));
+  slot.layers = cl::Buffer(context_, flags, (config_.output.layers ? pixels * kLayerFloats : 1) * sizeof(float));
   slot.counters = cl::Buffer(context_, subsample ? CL_MEM_READ_WRITE : CL_MEM_WRITE_ONLY,
                              (config_.count_rays ? pixels : 1) * sizeof(clrt_ray_counts));
   slot.capacity = pixels;
@@ -183,6 +185,7 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   kernel_.setArg(12, planes_);
   kernel_.setArg(13, triangles_);
   kernel_.setArg(14, materials_);
+  if (config_.output.layers) kernel_.setArg(16, slot.layers);  // (an argument of layer builds only)
   // Each work-item shades a block of kernel_lanes(config_) pixels,
   // packet_rows(config_) of them high. With subsampling a tile is two
   // launches (kernels/trace.cl): the ones that take every other column
@@ -245,6 +248,12 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
                                         &ev);
       tile.reads.push_back(ev);
     }
+    if (config_.output.layers) {
+      if (slot.layer_values.size() < n * kLayerFloats) slot.layer_values.resize(n * kLayerFloats);
+      transfer_queue_.enqueueReadBuffer(slot.layers, CL_FALSE, 0, n * kLayerFloats * sizeof(float),
+                                        slot.layer_values.data(), &after, &ev);
+      tile.reads.push_back(ev);
+    }
     if (config_.count_rays) {
       if (slot.counts.size() < n) slot.counts.resize(n);
       transfer_queue_.enqueueReadBuffer(slot.counters, CL_FALSE, 0, n * sizeof(clrt_ray_counts), slot.counts.data(),
@@ -285,12 +294,18 @@ void DeviceRenderer::store_tile(const PendingTile& tile, Image& dst) {
   const clrt_ray_counts* counts = nullptr;
   void* mapped_colour = nullptr;
   void* mapped_aux = nullptr;
+  const float* layers = nullptr;
+  void* mapped_layers = nullptr;
   if (map_results_) {
     mapped_colour = queue_.enqueueMapBuffer(slot.colors, CL_TRUE, CL_MAP_READ, 0, n * colour_bytes_per_pixel());
     colour = mapped_colour;
     if (classes) {
       mapped_aux = queue_.enqueueMapBuffer(slot.classes, CL_TRUE, CL_MAP_READ, 0, n * 2 * sizeof(cl_int));
       aux = static_cast<const cl_int*>(mapped_aux);
+    }
+    if (config_.output.layers) {
+      mapped_layers = queue_.enqueueMapBuffer(slot.layers, CL_TRUE, CL_MAP_READ, 0, n * kLayerFloats * sizeof(float));
+      layers = static_cast<const float*>(mapped_layers);
     }
     if (config_.count_rays) {
       if (slot.counts.size() < n) slot.counts.resize(n);
@@ -301,6 +316,7 @@ void DeviceRenderer::store_tile(const PendingTile& tile, Image& dst) {
     if (!tile.colour_in_place) colour = rgba8 ? static_cast<const void*>(slot.rgba8.data()) : slot.rgb.data();
     if (classes) aux = slot.aux.data();
     if (config_.count_rays) counts = slot.counts.data();
+    if (config_.output.layers) layers = slot.layer_values.data();
   }
   if (counts)
     for (size_t i = 0; i < n; ++i)  // the kernel counts in 32-bit words; they wrap past 2^31 as unsigned
@@ -338,15 +354,40 @@ void DeviceRenderer::store_tile(const PendingTile& tile, Image& dst) {
       }
     }
   }
+  if (layers) store_layers(layers, tile);
   if (map_results_) {
     queue_.enqueueUnmapMemObject(slot.colors, mapped_colour);
+    if (mapped_layers) queue_.enqueueUnmapMemObject(slot.layers, mapped_layers);
     if (mapped_aux) queue_.enqueueUnmapMemObject(slot.classes, mapped_aux);
     queue_.finish();  // (the next tile's kernel writes them again)
   }
 }
 
-void DeviceRenderer::begin_frame() {
+void DeviceRenderer::store_layers(const float* values, const PendingTile& tile) const {
+  const unsigned asked = config_.output.layers;
+  if (!layers_out_ || !layers_out_->holds(width_, height_, asked))
+    throw std::logic_error("store_layers: no layers of this frame (begin_frame)");
+  FrameLayers& dst = *layers_out_;
+  constexpr float kMissDistance = std::numeric_limits<float>::infinity();
+  for (int ty = 0; ty < tile.h; ++ty)
+    for (int tx = 0; tx < tile.w; ++tx) {
+      const float* v = values + (size_t(ty) * tile.w + tx) * kLayerFloats;
+      const size_t p = size_t(tile.y0 + ty) * dst.width + tile.x0 + tx;
+      int32_t id;
+      std::memcpy(&id, &v[CLRT_LAYER_ID], sizeof id);  // (the kernel stores the id's bits)
+      const bool hit = id >= 0;
+      if (asked & kLayerDepth) dst.depth[p] = hit ? v[CLRT_LAYER_DISTANCE] : kMissDistance;
+      for (int c = 0; c < 3; ++c) {
+        if (asked & kLayerNormal) dst.normal[p * 3 + c] = hit ? v[CLRT_LAYER_NORMAL + c] : 0.0f;
+        if (asked & kLayerAlbedo) dst.albedo[p * 3 + c] = hit ? v[CLRT_LAYER_ALBEDO + c] : 0.0f;
+      }
+      if (asked & kLayerId) dst.id[p] = hit ? id : -1;
+    }
+}
+
+void DeviceRenderer::begin_frame(FrameLayers* layers) {
   if (!pending_.empty()) drain();  // tiles of an abandoned frame
+  layers_out_ = layers;
   counts_ = {};
   timings_.download_ms = 0;
 }

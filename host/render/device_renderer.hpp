@@ -8,9 +8,11 @@
 #include <vector>
 
 #include "cl/cl.hpp"
+#include "clrt_layout.h"
 #include "cl/device.hpp"
 #include "cl/launch_timing.hpp"
 #include "image/image.hpp"
+#include "image/layers.hpp"
 #include "render/build_options.hpp"
 #include "render/bvh.hpp"
 #include "scene/sampling.hpp"
@@ -63,8 +65,10 @@ class DeviceRenderer {
   // samples per pixel, read at run time) never rebuilds.
   void prepare(const Scene& scene, int width, int height, int depth, Sampling sampling, const Bvh* bvh);
 
-  // Resets the ray counts and download time of a frame.
-  void begin_frame();
+  // Resets the ray counts and download time of a frame; `layers`: where its
+  // tiles store their AOV layers (a FrameLayers of the frame's size and the
+  // config's output.layers; null when it has none), until the next call.
+  void begin_frame(FrameLayers* layers = nullptr);
   // Renders the tile [x0, x0+w) x [y0, y0+h) into `dst` (a full-size image
   // of the configured contents). Returns the launch's kernel time (profiling
   // event, or the host wall time where the event is implausible:
@@ -104,9 +108,10 @@ class DeviceRenderer {
   // The result buffers of one tile in flight, and the host memory its
   // results are read into (kept from tile to tile: no new pages per tile).
   struct ResultSlot {
-    cl::Buffer colors, classes, counters;
+    cl::Buffer colors, classes, counters, layers;
     size_t capacity = 0;  // pixels
     std::vector<float> rgb;
+    std::vector<float> layer_values;  // kLayerFloats per pixel (kernels/clrt_layers.h)
     std::vector<uint8_t> rgba8;
     std::vector<cl_int> aux;
     std::vector<clrt_ray_counts> counts;
@@ -126,6 +131,10 @@ class DeviceRenderer {
   size_t colour_bytes_per_pixel() const;
   // Stores a finished tile's results (mapped or read into its slot) into `dst`.
   void store_tile(const PendingTile& tile, Image& dst);
+  // Stores a tile's AOV layers (kLayerFloats per pixel) into layers_out_.
+  void store_layers(const float* values, const PendingTile& tile) const;
+  // Floats per pixel of the kernel's layers buffer (kernels/clrt_layout.h).
+  static constexpr size_t kLayerFloats = CLRT_LAYER_FLOATS;
   // Waits for every enqueued command (after an error, and before the slots die).
   void drain() noexcept;
   // UserError when the local size does not fit the device and kernel.
@@ -152,6 +161,7 @@ class DeviceRenderer {
   int default_local_x_ = 1;    // set when the kernel is built
   size_t max_work_group_ = 1;  // CL_KERNEL_WORK_GROUP_SIZE of the built kernel
   DeviceTimings timings_;
+  FrameLayers* layers_out_ = nullptr;  // begin_frame()'s
   RayCounts counts_;
   double ms_per_row_ = 0;
 };

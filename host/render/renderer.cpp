@@ -101,15 +101,20 @@ void Renderer::render_into(Image& img) {
 
 void Renderer::render_rows(Image& img, int y_begin, int y_end) {
   const auto t0 = Clock::now();
+  const unsigned layers = settings_.kernel.output.layers;
+  const int width = devices_.front()->width(), height = devices_.front()->height();
+  if (!layers)
+    layers_ = FrameLayers();
+  else if (!layers_.holds(width, height, layers))
+    layers_ = FrameLayers(width, height, layers);
   std::vector<DeviceRenderer*> workers;
   for (auto& d : devices_) {
     if (d->width() == 0) throw std::logic_error("Renderer::render before prepare");
-    d->begin_frame();
+    d->begin_frame(layers ? &layers_ : nullptr);
     workers.push_back(d.get());
   }
   // Every device was prepared with the same scene and size; the bands cover
   // every pixel, so a reused image needs no clearing.
-  const int width = devices_.front()->width(), height = devices_.front()->height();
   if (!img.holds(width, height, settings_.kernel.output)) img = Image(width, height, settings_.kernel.output);
   stats_.shares = render_bands(workers, img, settings_.tiles, settings_.progress, y_begin, y_end, settings_.cancel);
   stats_.wall_ms = ms_since(t0);

@@ -82,6 +82,9 @@ class Renderer {
   int width() const;
   int height() const;
 
+  // The AOV layers of the last render() (settings.kernel.output.layers; an
+  // empty FrameLayers without them): rows render_rows() rendered.
+  const FrameLayers& layers() const { return layers_; }
   const FrameStats& stats() const { return stats_; }
   // "name" or "name + name + ...".
   std::string device_names() const;
@@ -93,6 +96,7 @@ class Renderer {
   std::vector<std::unique_ptr<DeviceRenderer>> devices_;
   RenderSettings settings_;
   FrameStats stats_;
+  FrameLayers layers_;
 };
 
 }  // namespace clrt

@@ -40,18 +40,23 @@ class Image(_np.ndarray):
     """A rendered frame: a numpy float32 array (height, width, 3) on the float image files' scale
     (value / 255: 1.0 is the book's 255, as clrt's EXR and PFM files hold it), unclamped.
 
-    ``info`` is a dict of how it was made (scene, depth, device, kernel_ms, frame_ms, ...). In Jupyter it
+    ``info`` is a dict of how it was made (scene, depth, device, kernel_ms, frame_ms, ...). ``aovs`` holds
+    the AOV layers a Renderer(aovs=...) was asked for, by name: "depth" (height, width) float32 (distance
+    to the first hit, +inf on a miss), "normal" and "albedo" (height, width, 3) float32, "id" (height, width)
+    int32 (-1 on a miss); of the ray through each pixel's centre (docs/guide/images.md, "Layers"). In Jupyter it
     shows as a PNG (``_repr_png_``); ``to_uint8()`` gives the 8-bit image clrt's PNG/PPM files hold.
     Arithmetic on it gives plain-looking Images too; ``numpy.asarray(img)`` is the bare array.
     """
 
-    def __new__(cls, array, info=None):
+    def __new__(cls, array, info=None, aovs=None):
         obj = _np.asarray(array, dtype=_np.float32).view(cls)
         obj.info = dict(info or {})
+        obj.aovs = dict(aovs or {})
         return obj
 
     def __array_finalize__(self, obj):
         self.info = getattr(obj, "info", {})
+        self.aovs = getattr(obj, "aovs", {})
 
     def __array_wrap__(self, obj, context=None):
         if obj.shape == ():  # a reduction (img.mean()): a plain numpy scalar, not a 0-d Image
@@ -83,16 +88,18 @@ class Renderer(_clrt._Renderer):
     Renderer(scene, width=600, height=600, *, device=None, precision="robust", spp=1, adaptive=None,
              subsample=None, aspect=None, depth=None, lanes=None, accel="auto", specialize=True, ftz=True,
              cache=True, verbose=False, kernel_dir=None, cl_options=None, local=None, band_rows=0,
-             max_launch_ms=None)
+             max_launch_ms=None, aovs=None)
 
     ``scene``: a clrt.Scene or a path. The options are `clrt render`'s (docs/guide/commands.md), with the
     same defaults, checks and messages; ``depth`` is the default of render(depth=None) (None: the scene's).
+    ``aovs``: layers to render beside the colour, `clrt render --aov`'s ("depth,normal,albedo,id" or a list
+    of those names), in each Image's ``aovs`` dict.
     """
 
     def render(self, depth=None):
         """The frame at ``depth`` (None: the Renderer's, else the scene's recursion_depth) as an Image."""
-        array, info = self._render(depth)
-        return Image(array, info)
+        array, info, aovs = self._render(depth)
+        return Image(array, info, aovs)
 
     def __repr__(self):
         return "<clrt.Renderer %r %dx%d on %s>" % (self.scene.name, self.width, self.height, self.device)

@@ -481,6 +481,43 @@ py::dict frame_info(const RenderOptions& o, int depth, const std::string& device
   return info;
 }
 
+// aovs=: "depth,normal", or a list or tuple of names, or None (no layers);
+// the layer bits (UserError as --aov's, "aovs: ..."). 
+unsigned layers_arg(const py::handle& value) {
+  if (value.is_none()) return 0;
+  std::string list;
+  if (py::isinstance<py::str>(value)) {
+    list = str_arg(value, "aovs");
+  } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    for (const py::handle item : value) list += (list.empty() ? "" : ",") + str_arg(item, "aovs");
+  } else {
+    throw UserError("aovs: expected a comma-separated str or a list of layer names");
+  }
+  try {
+    return parse_layers(list);
+  } catch (const UserError& e) {
+    throw UserError(std::string("--aov: ") + e.what());  // (the command line's message)
+  }
+}
+
+// A frame's layers as {name: array}: "depth" (H, W) float32, "normal" and
+// "albedo" (H, W, 3) float32, "id" (H, W) int32 (image/layers.hpp).
+py::dict layer_arrays(const FrameLayers& f) {
+  py::dict out;
+  const py::ssize_t h = f.height, w = f.width;
+  const auto copy = [](const auto& v, std::vector<py::ssize_t> shape) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    py::array_t<T> a(shape);
+    std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
+  };
+  if (f.layers & kLayerDepth) out["depth"] = copy(f.depth, {h, w});
+  if (f.layers & kLayerNormal) out["normal"] = copy(f.normal, {h, w, 3});
+  if (f.layers & kLayerAlbedo) out["albedo"] = copy(f.albedo, {h, w, 3});
+  if (f.layers & kLayerId) out["id"] = copy(f.id, {h, w});
+  return out;
+}
+
 // ---- the renderer -----------------------------------------------------------------
 // One scene at one size on its devices: the programs and scene buffers are
 // kept between frames (Renderer::prepare once per depth).
@@ -489,15 +526,16 @@ class PyRenderer {
   PyRenderer(const py::object& scene, int width, int height, const py::kwargs& kwargs) {
     scene_ = scene_arg(scene);
     o_ = options_for(scene_, width, height);
-    apply_options(o_, kwargs, join({kImageArgs, kDeviceKernelArgs, kLaunchArgs}));
+    apply_options(o_, kwargs, join({kImageArgs, kDeviceKernelArgs, kLaunchArgs}), {"aovs"});
+    if (kwargs.contains("aovs")) layers_ = layers_arg(kwargs["aovs"]);
     o_.validate();
     fitted_ = o_.image.fit_scene(*scene_.scene, scene_.name);
+    check_layers_fit(fitted_, layers_);
     flush_log();
     RenderSettings settings = o_.settings();
     // Colour on the float files' scale, stored so by the renderer (no pass
-    // over the frame after it); the per-pixel classes (and, later, other
-    // layers: an aovs= argument) would be asked for here.
-    settings.kernel.output = FrameContents{PixelFormat::Unit, /*classes=*/false};
+    // over the frame after it), and the AOV layers of aovs=.
+    settings.kernel.output = FrameContents{PixelFormat::Unit, /*classes=*/false, uint8_t(layers_)};
     // The frame's stop, asked between bands (frame_cancel_: set for one
     // frame at a time, under mutex_).
     settings.cancel = [this] { return frame_cancel_ && frame_cancel_(); };
@@ -530,6 +568,7 @@ class PyRenderer {
   py::tuple render(const py::object& depth_in) {
     const int depth = depth_of(depth_in);
     Image frame = unit_frame(o_.image.width, o_.image.height, pool_.get());
+    FrameLayers layers;
     const FrameStats stats = run_released<FrameStats>([&](const CancelFn& cancel) {
       std::lock_guard<std::mutex> lock(mutex_);  // (one frame at a time per renderer)
       prepare_locked(depth);
@@ -539,6 +578,7 @@ class PyRenderer {
         ~Reset() { c = nullptr; }
       } reset{frame_cancel_};
       renderer_->render_into(frame);
+      if (layers_) layers = renderer_->layers();
       return renderer_->stats();
     });
     py::dict info = frame_info(o_, depth, renderer_->device_names(), stats.wall_ms);
@@ -547,7 +587,8 @@ class PyRenderer {
     info["launches"] = stats.launches;
     info["build_ms"] = last_build_ms_;
     info["build_cached"] = last_build_cached_;
-    return py::make_tuple(unit_array(frame, pool_), info);
+    if (layers_) info["aovs"] = layer_list(layers_);
+    return py::make_tuple(unit_array(frame, pool_), info, layer_arrays(layers));
   }
 
   std::string device() const { return renderer_->device_names(); }
@@ -576,6 +617,7 @@ class PyRenderer {
   std::unique_ptr<Renderer> renderer_;
   std::mutex mutex_;
   std::shared_ptr<BufferPool> pool_ = std::make_shared<BufferPool>();
+  unsigned layers_ = 0;  // aovs=
   int prepared_depth_ = -1;
   double last_build_ms_ = 0;
   bool last_build_cached_ = false;

@@ -128,6 +128,20 @@ TEST_CASE("a lean clrt refuses -o x.png with exit 2 before rendering, and writes
   CHECK(out.out.rfind("P6\n", 0) == 0);
 }
 
+TEST_CASE("a lean clrt refuses --aov, which needs OpenImageIO's EXR, saying so", "[lean][cli][aov]") {
+  clrt_test::TempDir dir;
+  const std::string demo = source_path("scenes/cgfs-demo.json");
+  for (const std::string name : {"x.ppm", "x.pfm", "x.exr"}) {
+    const auto r = run_clrt({"render", demo, "--width", "8", "--height", "8", "--aov", "depth", "-o", dir / name});
+    INFO(name << ": status " << r.status << ", stderr: " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.one_line_error());
+    CHECK(r.err.rfind("clrt: error: ", 0) == 0);
+    CHECK(r.err.find("OpenImageIO") != std::string::npos);
+  }
+  CHECK(dir.entries().empty());
+}
+
 TEST_CASE("a lean clrt refuses plots, OBJ meshes and the comparison tracers, saying why", "[lean][cli]") {
   clrt_test::TempDir dir;
   const std::string demo = source_path("scenes/cgfs-demo.json");
