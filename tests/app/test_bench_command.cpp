@@ -197,6 +197,13 @@ TEST_CASE("clrt scaling rejects bad counts before measuring", "[cli]") {
     CHECK(r.one_line_error());
     CHECK(r.err.find("clrt: error: --spheres") == 0);
   }
+  for (const char* counts : {"0", "4000001", "1,"}) {
+    INFO(counts);
+    auto r = clrt_test::run_clrt({"scaling", "--triangles", counts, "--width", "8", "--height", "8"});
+    CHECK(r.status == 2);
+    CHECK(r.one_line_error());
+    CHECK(r.err.find("clrt: error: --triangles") == 0);
+  }
 }
 
 }  // namespace test_bench_command
