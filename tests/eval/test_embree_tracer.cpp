@@ -14,6 +14,7 @@
 // pick another sphere (embree_tracer.cpp) - a single pixel in a scene, more
 // than one level, which these scenes do not have.
 #include <catch2/catch.hpp>
+#include <stdexcept>
 
 #include "embree_tracer.hpp"
 #include "eval/bench.hpp"
@@ -118,6 +119,10 @@ TEST_CASE("embree tracer's triangles render the reference's image of the shipped
   const clrt::PixelAgreement a = clrt::compare_rgb(embree, reference_rgb);
   INFO("pixels differing by > 1 level: " << a.differ << ", largest difference " << a.max_levels);
   CHECK(a.differ <= 0.005);
+  // The OpenMP tracer has no triangle test: it refuses rather than time a
+  // picture without them.
+  std::vector<float> omp;
+  CHECK_THROWS_AS(clrt_bench::omp_render(scene, 8, 8, 3, omp), std::invalid_argument);
   // And the check notices a different picture: without the meshes.
   clrt::Scene bare = scene;
   bare.triangles.clear();
