@@ -1,8 +1,17 @@
 // embree_tracer.cpp - the float tracer of whitted_float.hpp (the book's
-// TraceRay, shared with omp_tracer.cpp) with its two sphere queries,
+// TraceRay, shared with omp_tracer.cpp) with its two queries,
 // ClosestIntersection and the shadow test, answered by an Embree 3 scene
 // instead of a loop over every sphere. Camera, lighting, shading and the
 // self-hit rule are omp_tracer's: the same code.
+//
+// Triangles: Embree's own RTC_GEOMETRY_TYPE_TRIANGLE (geomID 1, build
+// quality high), three vertices per face as the scene holds them (it keeps
+// no shared indices). Embree's float triangle test is not clrt's watertight
+// one, so on an edge between two faces a ray may hit the one face where
+// clrt hits the other, or neither (a crack) where clrt hits one: bench
+// checks this tracer's image against clrt's and reports the pixels that
+// differ. Planes (few, infinite: no box) are tested one by one after the
+// Embree query, as the OpenMP tracer does.
 //
 // Geometry: RTC_GEOMETRY_TYPE_USER, one primitive per sphere, whose
 // intersect/occluded callbacks run the tracers' float quadratic (the book's
@@ -148,6 +157,8 @@ struct World : Scenery {
   RTCScene scene = nullptr;
 };
 
+// Embree's hit: the sphere's index, or the triangle's past the spheres and
+// planes (whitted_float.hpp's ids); then the planes.
 inline int closest(const World& w, V O, V D, float tmin, float tmax, float& t) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
@@ -168,15 +179,21 @@ inline int closest(const World& w, V O, V D, float tmin, float tmax, float& t) {
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(w.scene, &ctx, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-    t = kInf;
-    return -1;
+  int best = -1;
+  t = kInf;
+  if (rh.hit.geomID == 0) {
+    t = rh.ray.tfar;
+    best = int(rh.hit.primID);
+  } else if (rh.hit.geomID == 1) {
+    t = rh.ray.tfar;
+    best = int(w.spheres.size() + w.planes.size() + rh.hit.primID);
   }
-  t = rh.ray.tfar;
-  return int(rh.hit.primID);
+  closest_plane(w, O, D, tmin, tmax, t, best);
+  return best;
 }
 
 inline bool blocked(const World& w, V O, V D, float tmin, float tmax) {
+  if (plane_blocks(w, O, D, tmin, tmax)) return true;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRay ray;
@@ -196,6 +213,38 @@ inline bool blocked(const World& w, V O, V D, float tmin, float tmax) {
   return ray.tfar < 0;  // -inf on a hit
 }
 
+// The scene's triangles as Embree triangle geometry (geomID 1; primID =
+// the triangle's index), three float vertices per face.
+void attach_triangles(RTCDevice device, RTCScene scene, const clrt::Scene& source) {
+  const size_t n = source.triangles.size();
+  if (n == 0) return;
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+  auto* index = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+  if (!v || !index) {
+    rtcReleaseGeometry(g);
+    check(device, "rtcSetNewGeometryBuffer");
+    throw std::runtime_error("Embree: rtcSetNewGeometryBuffer returned no buffer");
+  }
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < n; ++i) {
+    const clrt::Triangle& tri = source.triangles[i];
+    const clrt::Vec3* corner[3] = {&tri.v0, &tri.v1, &tri.v2};
+    for (int c = 0; c < 3; ++c) {
+      v[9 * i + 3 * c + 0] = float(corner[c]->x);
+      v[9 * i + 3 * c + 1] = float(corner[c]->y);
+      v[9 * i + 3 * c + 2] = float(corner[c]->z);
+      index[3 * i + c] = unsigned(3 * i + c);
+    }
+  }
+  rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+  rtcCommitGeometry(g);
+  rtcAttachGeometryByID(scene, g, 1);
+  rtcReleaseGeometry(g);
+}
+
 // Builds the Embree scene, then renders into `out` (float RGB or RGBA8).
 template <class Pixel>
 int build_and_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<Pixel>& out,
@@ -205,6 +254,7 @@ int build_and_render(const clrt::Scene& scene, int width, int height, int depth,
 
   EmbreeBuildInfo local;
   local.spheres = w.spheres.size();
+  local.triangles = scene.triangles.size();
   auto t0 = clrt::Clock::now();
   DeviceHandle device;
   check(device.d, "rtcNewDevice");
@@ -256,6 +306,7 @@ int build_and_render(const clrt::Scene& scene, int width, int height, int depth,
     rtcAttachGeometryByID(sc.s, g, 0);  // geomID 0; primID = sphere index
     rtcReleaseGeometry(g);
   }
+  attach_triangles(device.d, sc.s, scene);
   rtcCommitScene(sc.s);
   check(device.d, "building the scene");
   w.scene = sc.s;

@@ -1,5 +1,6 @@
 // embree_tracer.hpp - the OpenMP float tracer of omp_tracer.hpp with its
-// intersection queries answered by Intel Embree 3 (a BVH built per call):
+// intersection queries answered by Intel Embree 3 (a BVH built per call;
+// spheres as user geometry, triangles as Embree's own):
 // the book's ray tracer (Computer Graphics from Scratch, ch. 2-5), built with
 // -O3 -march=native -fopenmp. A benchmark comparison for `clrt bench` only,
 // never the oracle; its image matches omp_render's (tests/eval/
@@ -30,6 +31,7 @@ struct EmbreeBuildInfo {
   double render_ms = 0;  // the OpenMP loop over rows only: the figure to compare
   int threads = 0;       // OpenMP threads of the render
   size_t spheres = 0;
+  size_t triangles = 0;  // RTC_GEOMETRY_TYPE_TRIANGLE
 };
 
 // Renders width x height at `depth` into rgb (width*height*3 floats, 0..255

@@ -1,8 +1,11 @@
 // omp_tracer.cpp - the book's TraceRay in float (whitted_float.hpp), its two
-// sphere queries a loop over every sphere. Deliberately plain: the book's
+// queries a loop over every sphere and plane (triangles are the Embree
+// tracer's only: eval/bench.cpp does not run this one on them). Deliberately plain: the book's
 // listings, with the same any-hit shortcut for shadow rays as the OpenCL
 // kernel so that both do the same work.
 #include "omp_tracer.hpp"
+
+#include <stdexcept>
 
 #include "whitted_float.hpp"
 
@@ -22,6 +25,7 @@ inline int closest(const World& w, V O, V D, float tmin, float tmax, float& t) {
     if (t1 < t && tmin < t1 && t1 < tmax) t = t1, best = int(i);
     if (t2 < t && tmin < t2 && t2 < tmax) t = t2, best = int(i);
   }
+  closest_plane(w, O, D, tmin, tmax, t, best);
   return best;
 }
 
@@ -31,17 +35,27 @@ inline bool blocked(const World& w, V O, V D, float tmin, float tmax) {
     intersect(O, D, s, t1, t2);
     if ((tmin < t1 && t1 < tmax) || (tmin < t2 && t2 < tmax)) return true;
   }
-  return false;
+  return plane_blocks(w, O, D, tmin, tmax);
+}
+
+// Its queries do not test triangles: an image without them would be timed
+// as if it were the scene's.
+void refuse_triangles(const clrt::Scene& scene) {
+  if (!scene.triangles.empty())
+    throw std::invalid_argument("the OpenMP tracer does not trace triangles (the scene has " +
+                                std::to_string(scene.triangles.size()) + "); the Embree tracer does");
 }
 
 }  // namespace
 
 int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<float>& rgb) {
+  refuse_triangles(scene);
   const World w{scenery(scene)};
   return render_pixels(w, scene, width, height, depth, rgb);
 }
 
 int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<uint8_t>& rgba8) {
+  refuse_triangles(scene);
   const World w{scenery(scene)};
   return render_pixels(w, scene, width, height, depth, rgba8);
 }

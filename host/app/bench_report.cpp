@@ -94,7 +94,13 @@ nlohmann::ordered_json bench_json(const BenchResult& r) {
       {"embree_vs_omp_differ",
        r.embree_vs_omp_differ >= 0 ? nlohmann::ordered_json(r.embree_vs_omp_differ) : nlohmann::ordered_json()},
       {"embree_vs_omp_max_levels", r.embree_vs_omp_max_levels >= 0 ? nlohmann::ordered_json(r.embree_vs_omp_max_levels)
-                                                                   : nlohmann::ordered_json()}});
+                                                                   : nlohmann::ordered_json()},
+      {"omp_not_run", r.omp_not_run},
+      {"embree_vs_clrt_differ",
+       r.embree_vs_clrt_differ >= 0 ? nlohmann::ordered_json(r.embree_vs_clrt_differ) : nlohmann::ordered_json()},
+      {"embree_vs_clrt_max_levels", r.embree_vs_clrt_max_levels >= 0
+                                        ? nlohmann::ordered_json(r.embree_vs_clrt_max_levels)
+                                        : nlohmann::ordered_json()}});
   return out;
 }
 
@@ -150,6 +156,7 @@ void print_bench(const BenchResult& r) {
     std::printf("reference      %s (scalar double, 1 thread): speedup %.2fx (reference / clrt frame)\n",
                 format_stats(r.reference, "ms", 1).c_str(), r.speedup_vs_reference);
   if (!r.tracers_not_run.empty()) std::printf("OpenMP/Embree  not run: %s\n", r.tracers_not_run.c_str());
+  if (!r.omp_not_run.empty()) std::printf("OpenMP         not run: %s\n", r.omp_not_run.c_str());
   if (r.omp.n > 0) {
     std::printf("OpenMP float   %s (%d threads, -O3 -march=native)\n", format_stats(r.omp).c_str(), r.omp_threads);
     std::printf("speedup        %s (OpenMP frame / clrt frame, per round; > 1: clrt is faster)\n",
@@ -158,8 +165,9 @@ void print_bench(const BenchResult& r) {
                 format_stats(r.kernel_speedup_vs_omp, "x").c_str(), r.host_timed_launches ? ", host clock" : "");
   }
   if (r.embree.n > 0) {
-    std::printf("Embree float   %s (%d threads, render only; Embree 3 BVH, user-geometry spheres)\n",
-                format_stats(r.embree).c_str(), r.embree_threads);
+    std::printf("Embree float   %s (%d threads, render only; Embree 3 BVH, user-geometry spheres, %s)\n",
+                format_stats(r.embree).c_str(), r.embree_threads,
+                r.omp_not_run.empty() ? "no triangles" : "Embree's own triangles");
     std::printf("  BVH build    %s (once per Embree frame, not in it)\n", format_stats(r.embree_build).c_str());
     std::printf("speedup        %s (Embree frame / clrt frame, per round; > 1: clrt is faster)\n",
                 format_stats(r.speedup_vs_embree, "x").c_str());
@@ -168,7 +176,13 @@ void print_bench(const BenchResult& r) {
                   100 * r.embree_vs_omp_differ, r.embree_vs_omp_max_levels,
                   r.embree_vs_omp_differ > 0.001 ? ": NOT the same image, the comparison is suspect" : "");
     else
-      std::printf("  image        not checked (needs the OpenMP tracer: --no-omp)\n");
+      std::printf("  image        not checked against the OpenMP tracer's (%s)\n",
+                  r.omp_not_run.empty() ? "--no-omp" : "not run on meshes");
+    if (r.embree_vs_clrt_differ >= 0)
+      std::printf("  vs clrt      %.4f%% of pixels differ from clrt's by > 1 level (max %d)%s\n",
+                  100 * r.embree_vs_clrt_differ, r.embree_vs_clrt_max_levels,
+                  r.embree_vs_clrt_differ > kEmbreeVsClrtTolerance ? ": NOT the same image, the comparison is suspect"
+                                                                   : "");
   }
 }
 

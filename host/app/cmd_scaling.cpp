@@ -12,6 +12,7 @@
 #include "eval/scaling.hpp"
 #include "image/image_file.hpp"
 #include "image/plot.hpp"
+#include "scene/mesh_grid.hpp"
 #include "scene/random_scene.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
@@ -21,8 +22,8 @@ namespace clrt {
 
 namespace {
 
-// "1000,10000" -> {1000, 10000}; each in [1, kMaxGeneratedSpheres].
-std::vector<size_t> parse_counts(const std::string& text) {
+// "1000,10000" -> {1000, 10000}; each in [1, most], for the option `name`.
+std::vector<size_t> parse_counts(const std::string& text, const std::string& name, size_t most) {
   std::vector<size_t> counts;
   std::stringstream in(text);
   std::string item;
@@ -34,13 +35,13 @@ std::vector<size_t> parse_counts(const std::string& text) {
     while (begin != end && std::isspace(static_cast<unsigned char>(*begin))) ++begin;
     unsigned long long n = 0;
     const auto [stop, error] = std::from_chars(begin, end, n);
-    if (error != std::errc() || stop != end || n < 1 || n > kMaxGeneratedSpheres)
-      throw UserError("--spheres: expected counts from 1 to " + std::to_string(kMaxGeneratedSpheres) +
-                      " separated by commas (got \"" + text.substr(0, 64) + "\")");
+    if (error != std::errc() || stop != end || n < 1 || n > most)
+      throw UserError(name + ": expected counts from 1 to " + std::to_string(most) + " separated by commas (got \"" +
+                      text.substr(0, 64) + "\")");
     counts.push_back(size_t(n));
   }
-  if (counts.empty() || text.back() == ',') throw UserError("--spheres: expected counts separated by commas");
-  if (counts.size() > 32) throw UserError("--spheres: at most 32 counts");
+  if (counts.empty() || text.back() == ',') throw UserError(name + ": expected counts separated by commas");
+  if (counts.size() > 32) throw UserError(name + ": at most 32 counts");
   return counts;
 }
 
@@ -52,14 +53,20 @@ void add_scaling_command(CLI::App& app) {
   auto kernel = std::make_shared<KernelOptions>();
   auto launch = std::make_shared<LaunchOptions>();
   auto counts = std::make_shared<std::string>("1000,10000,100000");
+  auto triangles = std::make_shared<std::string>();
   auto settings = std::make_shared<ScalingSettings>();
   auto repeat = std::make_shared<int>(3);
   auto no_embree = std::make_shared<bool>(false);
   auto csv = std::make_shared<std::string>();
   auto plot = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand(
-      "scaling", "Frame time against the number of spheres (random scenes made in memory), beside the Embree tracer");
-  cmd->add_option("--spheres", *counts, "Sphere counts, separated by commas")->capture_default_str();
+      "scaling",
+      "Frame time against the number of spheres (random scenes made in memory) or triangles (grids of tori), beside "
+      "the Embree tracer");
+  auto* spheres = cmd->add_option("--spheres", *counts, "Sphere counts, separated by commas")->capture_default_str();
+  cmd->add_option("--triangles", *triangles,
+                  "Triangle counts of mesh scenes (grids of tori, up to 4000000), separated by commas; without "
+                  "--spheres only these run");
   cmd->add_option("--seed", settings->seed, "Seed of the scenes")->capture_default_str();
   cmd->add_option("--fill", settings->fill, "Fraction of the volume the spheres fill")
       ->check(CLI::Range(1e-6, 1.0))
@@ -75,7 +82,11 @@ void add_scaling_command(CLI::App& app) {
   cmd->callback([=] {
     image->validate();
     launch->validate();
-    settings->counts = parse_counts(*counts);
+    settings->counts = parse_counts(*counts, "--spheres", kMaxGeneratedSpheres);
+    if (!triangles->empty()) {
+      settings->triangles = parse_counts(*triangles, "--triangles", kMaxGridTriangles);
+      if (spheres->count() == 0) settings->counts.clear();
+    }
     if (!plot->empty()) check_plot_output(*plot);  // fail before measuring
     if (!csv->empty()) check_writable(*csv, "CSV");
     std::vector<NamedOutput> all;

@@ -16,7 +16,8 @@
 namespace clrt {
 namespace {
 
-std::string lower(std::string s) {
+// (named apart from image_file.cpp's lower(): clrt_core is a unity build)
+std::string lowercase(std::string s) {
   for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
 }
@@ -131,7 +132,7 @@ std::vector<DeviceInfo> select_devices(const std::string& spec) {
 
 std::vector<DeviceInfo> pick_devices(const std::vector<DeviceInfo>& all, const std::string& spec_in) {
   if (all.empty()) throw std::logic_error("pick_devices without devices");
-  const std::string spec = lower(spec_in);
+  const std::string spec = lowercase(spec_in);
   if (spec.empty() || spec == "default") return {all[default_device(all)]};
   if (spec == "all") return all;
   std::vector<DeviceInfo> picked;
@@ -154,8 +155,8 @@ std::vector<DeviceInfo> pick_devices(const std::vector<DeviceInfo>& all, const s
     } else {
       std::vector<const DeviceInfo*> matches;
       for (auto& d : all)
-        if (lower(d.name).find(part) != std::string::npos || lower(d.type).find(part) != std::string::npos ||
-            lower(d.platform_name).find(part) != std::string::npos)
+        if (lowercase(d.name).find(part) != std::string::npos || lowercase(d.type).find(part) != std::string::npos ||
+            lowercase(d.platform_name).find(part) != std::string::npos)
           matches.push_back(&d);
       if (!matches.empty()) {
         picked.push_back(*matches.front());

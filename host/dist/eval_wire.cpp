@@ -15,8 +15,8 @@ static_assert(sizeof(Comparison) == 120, "Comparison changed: update put_compari
 static_assert(sizeof(Image) == 136, "Image changed: update put_image/get_image");
 static_assert(sizeof(RayCounts) == 40, "RayCounts changed: update put_bench/get_bench");
 static_assert(sizeof(PeakFlops) == 104, "PeakFlops changed: update put_bench/get_bench");
-static_assert(sizeof(BenchResult) == 1280, "BenchResult changed: update put_bench/get_bench");
-static_assert(sizeof(SweepRow) == 1624, "SweepRow changed: update encode_sweep_row/decode_sweep_row");
+static_assert(sizeof(BenchResult) == 1328, "BenchResult changed: update put_bench/get_bench");
+static_assert(sizeof(SweepRow) == 1672, "SweepRow changed: update encode_sweep_row/decode_sweep_row");
 static_assert(sizeof(AccuracyRow) == 264, "AccuracyRow changed: update encode_accuracy_row/decode_accuracy_row");
 #endif
 
@@ -187,7 +187,7 @@ void put_bench(Writer& w, const BenchResult& b) {
   w.put_text(b.device), w.put_text(b.options);
   w.put<int32_t>(b.width), w.put<int32_t>(b.height), w.put<int32_t>(b.depth), w.put<int32_t>(b.spp);
   w.put<int32_t>(b.repeat), w.put<int32_t>(int32_t(b.subsample)), w.put<uint8_t>(b.rgba8);
-  w.put_text(b.tracers_not_run);
+  w.put_text(b.tracers_not_run), w.put_text(b.omp_not_run);
   put_stats(w, b.build_cold), put_stats(w, b.build_warm), w.put<uint8_t>(b.build_warm_cached);
   put_stats(w, b.upload);
   w.put(b.end_to_end_ms), w.put(b.first_launch_ms);
@@ -209,6 +209,7 @@ void put_bench(Writer& w, const BenchResult& b) {
   put_stats(w, b.embree), put_stats(w, b.embree_build), w.put(b.embree_build_ms), w.put<int32_t>(b.embree_threads);
   put_stats(w, b.speedup_vs_embree);
   w.put(b.embree_vs_omp_differ), w.put<int32_t>(b.embree_vs_omp_max_levels);
+  w.put(b.embree_vs_clrt_differ), w.put<int32_t>(b.embree_vs_clrt_max_levels);
   put_image(w, b.image), put_image(w, b.reference_image);
 }
 
@@ -217,7 +218,7 @@ BenchResult get_bench(Reader& r) {
   b.device = r.get_text(), b.options = r.get_text();
   b.width = r.get<int32_t>(), b.height = r.get<int32_t>(), b.depth = r.get<int32_t>(), b.spp = r.get<int32_t>();
   b.repeat = r.get<int32_t>(), b.subsample = get_subsample(r), b.rgba8 = r.get<uint8_t>() != 0;
-  b.tracers_not_run = r.get_text();
+  b.tracers_not_run = r.get_text(), b.omp_not_run = r.get_text();
   b.build_cold = get_stats(r), b.build_warm = get_stats(r), b.build_warm_cached = r.get<uint8_t>() != 0;
   b.upload = get_stats(r);
   b.end_to_end_ms = r.get<double>(), b.first_launch_ms = r.get<double>();
@@ -241,6 +242,7 @@ BenchResult get_bench(Reader& r) {
   b.embree_threads = r.get<int32_t>();
   b.speedup_vs_embree = get_stats(r);
   b.embree_vs_omp_differ = r.get<double>(), b.embree_vs_omp_max_levels = r.get<int32_t>();
+  b.embree_vs_clrt_differ = r.get<double>(), b.embree_vs_clrt_max_levels = r.get<int32_t>();
   b.image = get_image(r), b.reference_image = get_image(r);
   return b;
 }

@@ -10,6 +10,14 @@
 // correctly rounded; these are the values used), checks and counts the
 // faces, and comments out every line other than v, vn, vt and f before the
 // text reaches tinyobjloader.
+//
+// Most large meshes are triangles given by vertex index alone ("f 1 2 3"):
+// there is nothing to triangulate, and the scan keeps those faces itself
+// (tinyobjloader would emit each as given, in file order: the same mesh).
+// tinyobjloader is then not called: it stored every corner and vertex again
+// (measured: most of the load time and memory of a 4 million triangle
+// file, docs/results/meshes.md). A file with a polygon or a face corner
+// with texture or normal indices ("1/2/3") takes the tinyobjloader path.
 #include "scene/obj_mesh.hpp"
 
 #include <fcntl.h>
@@ -18,9 +26,9 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdint>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <sstream>
@@ -153,11 +161,16 @@ bool next_token(const char** p, const char* e, const char** tb, const char** te)
 }
 
 struct Scan {
-  std::vector<Vec3> vertices;  // as in the file
+  std::vector<Vec3> vertices;   // as in the file
   std::vector<uint32_t> lines;  // each vertex's line
   size_t faces = 0, triangles = 0;
   long long max_index = 0;  // the largest positive (1-based) face index, and its line
   size_t max_index_line = 0;
+  // While every face so far is a triangle of plain vertex indices: its
+  // corners (0-based, relative indices resolved; positive ones checked at
+  // the end against max_index); emptied at the first other face.
+  bool plain_triangles = true;
+  std::vector<uint32_t> corners;
 };
 
 // Checks and reads the v and f lines (see the top of the file) and turns
@@ -210,8 +223,11 @@ Scan scan(const std::string& path, std::string& text, size_t max_triangles) {
       out.lines.push_back(uint32_t(line));
     } else if (p + 1 < e && p[0] == 'f' && is_space(p[1])) {
       size_t n = 0;
+      uint32_t corner[3];
+      bool plain = true;
       while (next_token(&q, e, &tb, &te)) {
         const char* ie = static_cast<const char*>(std::memchr(tb, '/', size_t(te - tb)));
+        if (ie) plain = false;
         if (!ie) ie = te;
         const char* nb = tb;
         if (nb + 1 < ie && *nb == '+' && nb[1] != '-' && nb[1] != '+') ++nb;
@@ -227,14 +243,21 @@ Scan scan(const std::string& path, std::string& text, size_t max_triangles) {
           fail(path, at() + "face index " + std::to_string(idx) + " is out of range (vertex count before this line: " +
                          std::to_string(out.vertices.size()) + ")");
         if (idx > out.max_index) out.max_index = idx, out.max_index_line = line;
+        if (n < 3) corner[n] = uint32_t(idx > 0 ? idx - 1 : static_cast<long long>(out.vertices.size()) + idx);
         if (++n > kMaxFaceVertices)
           fail(path, at() + "a face has more than " + std::to_string(kMaxFaceVertices) + " vertices");
       }
       if (n < 3) fail(path, at() + "a face needs at least 3 vertices (has " + std::to_string(n) + ")");
+      if (out.plain_triangles && (!plain || n != 3)) {
+        out.plain_triangles = false;
+        out.corners = std::vector<uint32_t>();
+      }
+      if (out.plain_triangles) out.corners.insert(out.corners.end(), corner, corner + 3);
       ++out.faces;
       out.triangles += n - 2;
       if (out.triangles > max_triangles)
-        fail(path, "more than " + std::to_string(max_triangles) + " triangles (what the scene's limit leaves for this mesh)");
+        fail(path,
+             "more than " + std::to_string(max_triangles) + " triangles (what the scene's limit leaves for this mesh)");
     } else if (p + 2 < e && p[0] == 'v' && (p[1] == 'n' || p[1] == 't') && is_space(p[2])) {
       // normals and texture coordinates: left to tinyobjloader (faces may refer to them), unused
     } else if (p < e) {
@@ -259,6 +282,13 @@ std::string first_line(const std::string& s) {
 
 ObjMesh parse_obj_mesh(const std::string& path, std::string text, size_t max_triangles) {
   Scan s = scan(path, text, max_triangles);
+  ObjMesh out;
+  if (s.plain_triangles) {  // nothing to triangulate: the scan's faces (see the top of the file)
+    out.faces = std::move(s.corners);
+    out.vertices = std::move(s.vertices);
+    out.lines = std::move(s.lines);
+    return out;
+  }
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
@@ -275,7 +305,6 @@ ObjMesh parse_obj_mesh(const std::string& path, std::string text, size_t max_tri
     fail(path, "unsupported OBJ syntax (tinyobjloader read " + std::to_string(reader.GetAttrib().vertices.size() / 3) +
                    " vertices, not " + std::to_string(s.vertices.size()) + ")");
 
-  ObjMesh out;
   out.faces.reserve(3 * s.triangles);
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     const auto& idx = shape.mesh.indices;

@@ -53,8 +53,8 @@ namespace {
 // once per distinct file (`parsed`, by device and inode): the byte limit
 // counts every distinct file together (`bytes`), the triangle limit every
 // mention (`room`: what the scene's limit leaves).
-const ObjMesh& read_mesh(int root, const std::string& file, const std::string& shown, size_t room,
-                         size_t byte_limit, size_t& bytes, std::map<std::pair<dev_t, ino_t>, ObjMesh>& parsed) {
+const ObjMesh& read_mesh(int root, const std::string& file, const std::string& shown, size_t room, size_t byte_limit,
+                         size_t& bytes, std::map<std::pair<dev_t, ino_t>, ObjMesh>& parsed) {
   std::string why;
   const int fd = open_beneath(root, file, why);
   if (fd < 0) throw UserError(shown + ": cannot open mesh file: " + why);
@@ -121,7 +121,12 @@ void SceneBuilder::load_meshes() {
       report(m.where + ".file", e.what());
       continue;
     }
-    scene_.triangles.insert(scene_.triangles.end(), faces.begin(), faces.end());
+    // The first mesh's faces become the scene's (no copy: a copy held both
+    // at once, twice a large mesh's memory at the peak).
+    if (scene_.triangles.empty())
+      scene_.triangles = std::move(faces);
+    else
+      scene_.triangles.insert(scene_.triangles.end(), faces.begin(), faces.end());
   }
 }
 

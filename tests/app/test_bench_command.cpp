@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli_run.hpp"
+#include "eval/bench.hpp"
 #include "test_util.hpp"
 
 // (clrt_tests is a unity build: each file's code is in a namespace of its own.)
@@ -175,7 +176,7 @@ TEST_CASE("clrt scaling writes one CSV row per count and a log-log plot", "[cli]
   std::ifstream csv(dir / "s.csv");
   std::string header, line;
   REQUIRE(std::getline(csv, header));
-  CHECK(header.rfind("clrt_version,timestamp_utc,device_driver,device,spheres,json_bytes,parse_ms,", 0) == 0);
+  CHECK(header.rfind("clrt_version,timestamp_utc,device_driver,device,spheres,triangles,json_bytes,parse_ms,", 0) == 0);
   std::vector<std::string> rows;
   while (std::getline(csv, line)) rows.push_back(line);
   REQUIRE(rows.size() == 2);
@@ -189,6 +190,31 @@ TEST_CASE("clrt scaling writes one CSV row per count and a log-log plot", "[cli]
   CHECK(std::filesystem::file_size(dir / "s.png") > 1000);
 }
 
+TEST_CASE("clrt scaling --triangles loads a grid of tori and checks Embree's image against clrt's",
+          "[cli][bench][opencl][slow]") {
+  clrt_test::TempDir dir;
+  auto r = clrt_test::run_clrt(
+      {"scaling", "--triangles", "300", "--width", "48", "--height", "32", "--repeat", "1", "--csv", dir / "m.csv"});
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("mesh scenes") != std::string::npos);
+  std::ifstream csv(dir / "m.csv");
+  std::string header, row;
+  REQUIRE(std::getline(csv, header));
+  REQUIRE(std::getline(csv, row));
+  auto column = [&](const std::string& name) { return std::stod(csv_column(header, row, name)); };
+  // Only the mesh scene runs (no --spheres): at most 300 triangles (one
+  // torus of 18 x 8 quads: 288).
+  CHECK(column("spheres") == 0);
+  CHECK(column("triangles") <= 300);
+  CHECK(column("triangles") >= 250);
+  CHECK(column("prepare_ms") > 0);
+  CHECK(column("embree_build_once_ms") > 0);
+  // The same picture: bench's tolerance (eval/bench.hpp), 1% of the pixels.
+  CHECK(column("embree_vs_clrt_differ") >= 0);
+  CHECK(column("embree_vs_clrt_differ") <= clrt::kEmbreeVsClrtTolerance);
+}
+
 TEST_CASE("clrt scaling rejects bad counts before measuring", "[cli]") {
   for (const char* counts : {"0", "abc", "1,,2", "1,", "-5", "3000000", "1e3"}) {
     INFO(counts);
@@ -196,6 +222,13 @@ TEST_CASE("clrt scaling rejects bad counts before measuring", "[cli]") {
     CHECK(r.status == 2);
     CHECK(r.one_line_error());
     CHECK(r.err.find("clrt: error: --spheres") == 0);
+  }
+  for (const char* counts : {"0", "4000001", "1,"}) {
+    INFO(counts);
+    auto r = clrt_test::run_clrt({"scaling", "--triangles", counts, "--width", "8", "--height", "8"});
+    CHECK(r.status == 2);
+    CHECK(r.one_line_error());
+    CHECK(r.err.find("clrt: error: --triangles") == 0);
   }
 }
 

@@ -105,6 +105,7 @@ BenchResult fill_bench(Counter& c) {
   b.device = c.s(), b.options = c.s();
   b.width = c.i(), b.height = c.i(), b.depth = c.i(), b.spp = c.i(), b.repeat = c.i();
   b.subsample = Subsample::Interpolate, b.rgba8 = true, b.tracers_not_run = c.s();
+  b.omp_not_run = c.s();
   b.build_cold = c.stats(), b.build_warm = c.stats(), b.build_warm_cached = true, b.upload = c.stats();
   b.end_to_end_ms = c.d(), b.first_launch_ms = c.d();
   b.bvh = true, b.bvh_build_ms = c.d(), b.bvh_bytes = size_t(c.i()), b.bvh_depth = c.i();
@@ -129,6 +130,7 @@ BenchResult fill_bench(Counter& c) {
   b.omp = c.stats(), b.omp_threads = c.i(), b.speedup_vs_omp = c.stats(), b.kernel_speedup_vs_omp = c.stats();
   b.embree = c.stats(), b.embree_build = c.stats(), b.embree_build_ms = c.d(), b.embree_threads = c.i();
   b.speedup_vs_embree = c.stats(), b.embree_vs_omp_differ = c.d(), b.embree_vs_omp_max_levels = c.i();
+  b.embree_vs_clrt_differ = c.d(), b.embree_vs_clrt_max_levels = c.i();
   b.image = fill_image(c, 3, 2, {PixelFormat::Float, true});
   b.reference_image = fill_image(c, 2, 3, {PixelFormat::Rgba8, false});
   return b;
@@ -201,6 +203,9 @@ void check_same(const BenchResult& a, const BenchResult& b) {
   check_same(a.speedup_vs_embree, b.speedup_vs_embree);
   CHECK(a.embree_vs_omp_differ == b.embree_vs_omp_differ);
   CHECK(a.embree_vs_omp_max_levels == b.embree_vs_omp_max_levels);
+  CHECK(a.omp_not_run == b.omp_not_run);
+  CHECK(a.embree_vs_clrt_differ == b.embree_vs_clrt_differ);
+  CHECK(a.embree_vs_clrt_max_levels == b.embree_vs_clrt_max_levels);
   check_same(a.image, b.image);
   check_same(a.reference_image, b.reference_image);
 }

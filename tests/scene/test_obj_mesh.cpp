@@ -102,6 +102,36 @@ TEST_CASE("OBJ quads become two triangles, relative indices and CRLF work", "[me
   CHECK(load(g.path).size() == 3);
 }
 
+TEST_CASE("plain triangles read by the scan are the faces tinyobjloader makes", "[mesh]") {
+  // "f 1 2 3" files skip tinyobjloader (obj_mesh.cpp); the same faces with
+  // texture indices ("1/1") go through it: both meshes must be equal, with
+  // relative indices, forward references and CRLF lines among them.
+  std::string plain, textured;
+  for (int i = 0; i < 6; ++i) {
+    const std::string v = "v " + std::to_string(i) + " " + std::to_string(i * i) + " 0." + std::to_string(i) + "\r\n";
+    plain += v;
+    textured += v + "vt 0 0\n";
+  }
+  const char* faces[][3] = {{"1", "2", "3"}, {"-1", "-2", "-3"}, {"4", "-5", "7"}, {"6", "5", "4"}};
+  for (auto& f : faces) {
+    plain += std::string("f ") + f[0] + " " + f[1] + " " + f[2] + "\n";
+    textured += std::string("f ") + f[0] + "/1 " + f[1] + "/1 " + f[2] + "/1\n";
+  }
+  plain += "v 7 7 7\n", textured += "v 7 7 7\n";  // the forward reference's vertex
+  const ObjMesh a = parse_obj_mesh("plain.obj", plain, 100), b = parse_obj_mesh("textured.obj", textured, 100);
+  REQUIRE(a.triangles() == 4);
+  CHECK(a.faces == b.faces);
+  CHECK(a.lines.size() == b.lines.size());
+  REQUIRE(a.vertices.size() == b.vertices.size());
+  for (size_t i = 0; i < a.vertices.size(); ++i) check_vec(a.vertices[i], b.vertices[i], 0);
+  CHECK(a.faces == std::vector<uint32_t>{0, 1, 2, 5, 4, 3, 3, 1, 6, 5, 4, 3});
+  // A quad after plain triangles takes tinyobjloader's path: 2 + 2 triangles.
+  const ObjMesh c =
+      parse_obj_mesh("mixed.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\nf 1 2 3 4\n", 100);
+  CHECK(c.triangles() == 4);
+  CHECK(std::vector<uint32_t>(c.faces.begin(), c.faces.begin() + 6) == std::vector<uint32_t>{0, 1, 2, 0, 2, 3});
+}
+
 TEST_CASE("the mesh transform scales, rotates about x, y, z in that order, then translates", "[mesh]") {
   TempObj f("v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n");
   {
