@@ -221,49 +221,53 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
                                     global_for(mode == Subsample::Shade ? size_t(w) : every_other), local);
   }
 
-  if (!map_results_) {
-    // The reads go on the second queue after the kernel: the next tile's
-    // kernel (on queue_, into the other slot) runs while they travel.
-    const std::vector<cl::Event> after{tile.launch.event};
-    const bool rgba8 = config_.output.pixels == PixelFormat::Rgba8;
-    const size_t colour_bytes = n * colour_bytes_per_pixel();
-    void* colour_target;
-    if (rgba8 && x0 == 0 && w == dst.width) {
-      // 8-bit rows are already the image's bytes: read them in place.
-      tile.colour_in_place = true;
-      colour_target = &dst.rgba8[size_t(y0) * dst.width * 4];
-    } else if (rgba8) {
-      if (slot.rgba8.size() < n * 4) slot.rgba8.resize(n * 4);
-      colour_target = slot.rgba8.data();
-    } else {
-      if (slot.rgb.size() < n * 3) slot.rgb.resize(n * 3);
-      colour_target = slot.rgb.data();
-    }
-    cl::Event ev;
-    transfer_queue_.enqueueReadBuffer(slot.colors, CL_FALSE, 0, colour_bytes, colour_target, &after, &ev);
-    tile.reads.push_back(ev);
-    if (config_.output.classes) {
-      if (slot.aux.size() < n * 2) slot.aux.resize(n * 2);
-      transfer_queue_.enqueueReadBuffer(slot.classes, CL_FALSE, 0, n * 2 * sizeof(cl_int), slot.aux.data(), &after,
-                                        &ev);
-      tile.reads.push_back(ev);
-    }
-    if (config_.output.layers) {
-      if (slot.layer_values.size() < n * kLayerFloats) slot.layer_values.resize(n * kLayerFloats);
-      transfer_queue_.enqueueReadBuffer(slot.layers, CL_FALSE, 0, n * kLayerFloats * sizeof(float),
-                                        slot.layer_values.data(), &after, &ev);
-      tile.reads.push_back(ev);
-    }
-    if (config_.count_rays) {
-      if (slot.counts.size() < n) slot.counts.resize(n);
-      transfer_queue_.enqueueReadBuffer(slot.counters, CL_FALSE, 0, n * sizeof(clrt_ray_counts), slot.counts.data(),
-                                        &after, &ev);
-      tile.reads.push_back(ev);
-    }
-    transfer_queue_.flush();
-  }
+  if (!map_results_) enqueue_reads(tile, slot, dst);
   queue_.flush();
   pending_.push_back(std::move(tile));
+}
+
+// The tile's reads, on the second queue after the kernel: the next tile's
+// kernel (on queue_, into the other slot) runs while they travel.
+void DeviceRenderer::enqueue_reads(PendingTile& tile, ResultSlot& slot, Image& dst) {
+  const size_t n = size_t(tile.w) * tile.h;
+  const int x0 = tile.x0, y0 = tile.y0, w = tile.w;
+  const std::vector<cl::Event> after{tile.launch.event};
+  const bool rgba8 = config_.output.pixels == PixelFormat::Rgba8;
+  const size_t colour_bytes = n * colour_bytes_per_pixel();
+  void* colour_target;
+  if (rgba8 && x0 == 0 && w == dst.width) {
+    // 8-bit rows are already the image's bytes: read them in place.
+    tile.colour_in_place = true;
+    colour_target = &dst.rgba8[size_t(y0) * dst.width * 4];
+  } else if (rgba8) {
+    if (slot.rgba8.size() < n * 4) slot.rgba8.resize(n * 4);
+    colour_target = slot.rgba8.data();
+  } else {
+    if (slot.rgb.size() < n * 3) slot.rgb.resize(n * 3);
+    colour_target = slot.rgb.data();
+  }
+  cl::Event ev;
+  transfer_queue_.enqueueReadBuffer(slot.colors, CL_FALSE, 0, colour_bytes, colour_target, &after, &ev);
+  tile.reads.push_back(ev);
+  if (config_.output.classes) {
+    if (slot.aux.size() < n * 2) slot.aux.resize(n * 2);
+    transfer_queue_.enqueueReadBuffer(slot.classes, CL_FALSE, 0, n * 2 * sizeof(cl_int), slot.aux.data(), &after,
+                                      &ev);
+    tile.reads.push_back(ev);
+  }
+  if (config_.output.layers) {
+    if (slot.layer_values.size() < n * kLayerFloats) slot.layer_values.resize(n * kLayerFloats);
+    transfer_queue_.enqueueReadBuffer(slot.layers, CL_FALSE, 0, n * kLayerFloats * sizeof(float),
+                                      slot.layer_values.data(), &after, &ev);
+    tile.reads.push_back(ev);
+  }
+  if (config_.count_rays) {
+    if (slot.counts.size() < n) slot.counts.resize(n);
+    transfer_queue_.enqueueReadBuffer(slot.counters, CL_FALSE, 0, n * sizeof(clrt_ray_counts), slot.counts.data(),
+                                      &after, &ev);
+    tile.reads.push_back(ev);
+  }
+  transfer_queue_.flush();
 }
 
 LaunchTime DeviceRenderer::finish_tile(Image& dst) {

@@ -127,6 +127,7 @@ class DeviceRenderer {
   void ensure_slot(ResultSlot& slot, size_t pixels);
   // submit_tile() without the cleanup after an error.
   void enqueue_tile(int x0, int y0, int w, int h, Image& dst);
+  void enqueue_reads(PendingTile& tile, ResultSlot& slot, Image& dst);
   // Bytes of colour the kernel writes per pixel (config_.output).
   size_t colour_bytes_per_pixel() const;
   // Stores a finished tile's results (mapped or read into its slot) into `dst`.
