@@ -15,11 +15,11 @@
  * One ray per work-item (CLRT_LANES 1) tests a node's children together,
  * one SIMD lane per child (float4 or float8). A block of lanes tests the
  * children one after the other, one SIMD lane per ray, and enters a child
- * that any lane needs. Either way the leaves among the children are tested
- * at once, and the inner children are pushed nearest last, each with its
- * entry distance (the smallest over the lanes that meet it), so the nearest
- * is walked first and a popped child beyond the closest hit is skipped.
- * Shadow rays take any hit: no ordering, and the walk ends at the first. The
+ * that any lane needs. Either way the hit children, leaves and inner nodes
+ * alike, are pushed nearest last, each with its entry distance (the smallest
+ * over the lanes that meet it), so the nearest is visited first and a popped
+ * child beyond the closest hit is skipped. Shadow rays take any hit: no
+ * ordering, leaves tested at once, and the walk ends at the first. The
  * walk is iterative; CLRT_BVH_STACK entries always suffice (clrt_layout.h). */
 #ifndef CLRT_BVH_H
 #define CLRT_BVH_H
@@ -152,7 +152,7 @@ CLRT_INLINE void node_children(__global const clrt_wide_node* node, const vec3* 
 }
 #endif
 
-/* Pushes inner child `child` of a node with entry distance `enter` onto the
+/* Pushes child reference `child` of a node with entry distance `enter` onto the
  * stack, keeping the children pushed since `base` sorted farthest first
  * (insertion: at most CLRT_BVH_WIDTH of them). */
 CLRT_INLINE void push_sorted(int child, real enter, int base, int* stack, real* stack_enter, int* top) {
@@ -237,26 +237,28 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
     real enter[CLRT_BVH_WIDTH];
     int hit[CLRT_BVH_WIDTH];
     node_children(node, O, &inverse, tmin, BMIN(closest, (lreal)tmax), MASK_TRUE, enter, hit);
+    /* every hit child, nearest on top: inner ones by their index, leaves as
+     * ~(node * CLRT_BVH_WIDTH + slot) (their entries are read when popped) */
     const int base = top;
-    for (int k = 0; k < CLRT_BVH_WIDTH; ++k) {
-      if (!hit[k]) continue;
-      const int count = node->count[k];
-      if (count > 0) {
-        /* (a leaf beyond every lane's closest hit, found meanwhile, is skipped) */
-        if (ANY(enter[k] <= closest))
-          closest_in_leaf(node->child[k], count, O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best, tests);
-      } else
-        push_sorted(node->child[k], enter[k], base, stack, stack_enter, &top);
-    }
-    /* the nearest child still worth a walk: beyond every lane's closest
-     * hit, none is */
+    for (int k = 0; k < CLRT_BVH_WIDTH; ++k)
+      if (hit[k])
+        push_sorted(node->count[k] > 0 ? ~(index * CLRT_BVH_WIDTH + k) : node->child[k], enter[k], base, stack,
+                    stack_enter, &top);
+    /* the nearest child still worth a visit (beyond every lane's closest
+     * hit, none is): leaves are tested on the way to it */
     index = -1;
     while (top > 0) {
       --top;
-      if (ANY(stack_enter[top] <= closest)) {
+      if (!ANY(stack_enter[top] <= closest)) continue;
+      if (stack[top] >= 0) {
         index = stack[top];
         break;
       }
+      const int slot = ~stack[top];
+      __global const clrt_wide_node* parent = &nodes[slot / CLRT_BVH_WIDTH];
+      const int k = slot % CLRT_BVH_WIDTH;
+      closest_in_leaf(parent->child[k], parent->count[k], O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best,
+                      tests);
     }
     if (index < 0) break;
   }
@@ -279,6 +281,7 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
   const ray_shear shear = shear_of(D);
 #endif
   int stack[CLRT_BVH_STACK];
+  real stack_enter[CLRT_BVH_STACK];
   int top = 0, index = 0;
   for (;;) {
     const lint open = active & !blocked;
@@ -287,22 +290,31 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
     real enter[CLRT_BVH_WIDTH];
     int hit[CLRT_BVH_WIDTH];
     node_children(node, O, &inverse, tmin, (lreal)tmax, open, enter, hit);
-    for (int k = 0; k < CLRT_BVH_WIDTH; ++k) {
-      if (!hit[k]) continue;
-      const int count = node->count[k];
-      if (count < 0) {
-        stack[top++] = node->child[k];
-        continue;
+    /* nearest first, as the closest-hit walk: a blocker near the surface
+     * (the usual one) is found before the far subtrees are walked */
+    const int base = top;
+    for (int k = 0; k < CLRT_BVH_WIDTH; ++k)
+      if (hit[k])
+        push_sorted(node->count[k] > 0 ? ~(index * CLRT_BVH_WIDTH + k) : node->child[k], enter[k], base, stack,
+                    stack_enter, &top);
+    index = -1;
+    while (top > 0) {
+      --top;
+      if (stack[top] >= 0) {
+        index = stack[top];
+        break;
       }
-      for (int e = node->child[k]; e < node->child[k] + count; ++e) {
+      const int slot = ~stack[top];
+      __global const clrt_wide_node* parent = &nodes[slot / CLRT_BVH_WIDTH];
+      const int k = slot % CLRT_BVH_WIDTH;
+      for (int e = parent->child[k]; e < parent->child[k] + parent->count[k]; ++e) {
         lreal t1, t2;
         entry_roots(primitives[e], O, D SHEAR_PASS, self, scene, &t1, &t2, tests);
         blocked |= ((tmin < t1) & (t1 < tmax)) | ((tmin < t2) & (t2 < tmax));
       }
       if (ALL(blocked | !active)) return blocked;
     }
-    if (top == 0) break;
-    index = stack[--top];
+    if (index < 0) break;
   }
   return blocked;
 }

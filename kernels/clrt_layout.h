@@ -193,11 +193,11 @@ typedef struct clrt_wide_node {
   clrt_i32 child[CLRT_BVH_WIDTH];
   clrt_i32 count[CLRT_BVH_WIDTH];
 } clrt_wide_node; /* 32 * CLRT_BVH_WIDTH bytes */
-/* A wide node is at least one binary level below its parent, so the leaves
- * are at most CLRT_BVH_MAX_DEPTH - 1 wide levels down; a walk's stack holds
- * the children it has yet to visit, at most CLRT_BVH_WIDTH - 1 per level
- * above the current node plus the current node's: CLRT_BVH_STACK entries
- * always suffice. */
+/* A wide node is at least one binary level below its parent, so inner
+ * nodes are at most CLRT_BVH_MAX_DEPTH - 2 wide levels down; a walk's stack
+ * holds the children it has yet to visit, at most CLRT_BVH_WIDTH - 1 per
+ * level above the current node plus the current node's CLRT_BVH_WIDTH:
+ * CLRT_BVH_STACK entries always suffice. */
 #define CLRT_BVH_STACK (CLRT_BVH_MAX_DEPTH * (CLRT_BVH_WIDTH - 1))
 
 /* Every member of every struct above, in declaration order, as

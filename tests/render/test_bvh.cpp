@@ -111,8 +111,8 @@ Image render(const Scene& scene, int width, int height, int depth, KernelConfig 
 // exactly one leaf child, each child's box the box of a binary node (so it
 // holds its primitives, check_structure()), every node reached once, and
 // no walk needing more stack than CLRT_BVH_STACK: a node's walk keeps the
-// inner children of its ancestors not yet visited (all but one each) and
-// pushes its own.
+// children of its ancestors not yet visited (all but one each) and pushes
+// its own.
 void check_wide(const Bvh& bvh) {
   REQUIRE(!bvh.wide.empty());
   std::vector<int> entry_seen(bvh.primitives.size(), 0), node_seen(bvh.wide.size(), 0);
@@ -128,13 +128,13 @@ void check_wide(const Bvh& bvh) {
     REQUIRE(v.node < bvh.wide.size());
     ++node_seen[v.node];
     const clrt_wide_node& n = bvh.wide[v.node];
-    int inner = 0;
-    for (int k = 0; k < CLRT_BVH_WIDTH; ++k) inner += n.count[k] < 0;
-    deepest_stack = std::max(deepest_stack, v.pending + inner);
+    int used = 0;  // (leaves are pushed too: closest-hit walks test them when popped)
+    for (int k = 0; k < CLRT_BVH_WIDTH; ++k) used += n.count[k] != 0;
+    deepest_stack = std::max(deepest_stack, v.pending + used);
     for (int k = 0; k < CLRT_BVH_WIDTH; ++k) {
       if (n.count[k] < 0) {
         CHECK(n.count[k] == -1);
-        todo.push_back({size_t(n.child[k]), v.pending + inner - 1});
+        todo.push_back({size_t(n.child[k]), v.pending + used - 1});
         continue;
       }
       for (int e = n.child[k]; e < n.child[k] + n.count[k]; ++e) {
