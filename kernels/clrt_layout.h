@@ -184,8 +184,8 @@ typedef struct clrt_bvh_node {
  * list from child[k]; count[k] < 0 an inner node, nodes[child[k]]; 0 an
  * empty slot (or an empty leaf), never entered. Its box lower[a][k] ..
  * upper[a][k] on axis a is the binary node's, padded as described above. */
-#ifndef CLRT_BVH_WIDTH
-#define CLRT_BVH_WIDTH 4
+#ifndef CLRT_BVH_WIDTH /* 8: measured faster than 4 (docs/results/wide-hierarchy.md) */
+#define CLRT_BVH_WIDTH 8
 #endif
 typedef struct clrt_wide_node {
   clrt_f32 lower[3][CLRT_BVH_WIDTH];
