@@ -306,7 +306,9 @@ TEST_CASE("the lanes probe picks a candidate, and the image is every candidate's
   const Scene scene = random_spheres(3000, 23);
   KernelConfig config;  // lanes 0: probed where the device has blocks of lanes
   const DeviceInfo device = clrt_test::test_device();
-  Renderer probed({device}, RenderSettings{config});
+  RenderSettings settings;
+  settings.kernel = config;
+  Renderer probed({device}, settings);
   probed.prepare(scene, 64, 48, 3);
   const Image image = probed.render();
   const std::string chosen = probed.options();
@@ -321,7 +323,7 @@ TEST_CASE("the lanes probe picks a candidate, and the image is every candidate's
     CHECK(pixels_differing(image, render(scene, 64, 48, 3, forced, Accel::Auto)) == 0);
   }
   // the same work again: the remembered choice, the same program
-  Renderer again({device}, RenderSettings{config});
+  Renderer again({device}, settings);
   again.prepare(scene, 64, 48, 3);
   CHECK(again.options() == chosen);
   CHECK(pixels_differing(image, again.render()) == 0);
