@@ -1,19 +1,27 @@
 /* clrt_bvh.h - closest-hit and any-hit queries through the bounding volume
- * hierarchy (clrt_layout.h: clrt_bvh_node), built with -DCLRT_BVH in place
- * of the loops over every sphere of clrt_intersect.h. Same answers as those
- * loops, lane by lane:
- *  - a node is entered when any lane's ray may meet its box inside that
- *    lane's interval; every sphere the loops would test and could win is in
- *    such a node (boxes are padded on the host beyond every rounding of the
- *    sphere test, and the slab test below widens its interval by far more
- *    than its own rounding);
- *  - equal distances go to the lower sphere index, as in the loops, which
- *    see spheres in index order.
- * The lanes of a work-item walk the tree together (a node is visited when
- * any lane needs it; the sphere test is per lane), nearer child first by the
- * first lane's direction. The walk is iterative; its stack holds one node per
- * level at most, so CLRT_BVH_MAX_DEPTH entries suffice (the host never builds
- * deeper). */
+ * hierarchy (clrt_layout.h: clrt_wide_node, up to CLRT_BVH_WIDTH children per
+ * node), built with -DCLRT_BVH in place of the loops over every primitive of
+ * clrt_intersect.h. Same answers as those loops, lane by lane:
+ *  - a child is entered when any lane's ray may meet its box inside that
+ *    lane's interval; every primitive the loops would test and could win is
+ *    in such a child (boxes are padded on the host beyond every rounding of
+ *    the primitive tests, and the slab test below widens its interval by
+ *    far more than its own rounding);
+ *  - a child is dropped only when its widened entry distance is beyond every
+ *    lane's closest hit so far (strictly: a primitive at the same distance
+ *    may still win the tie);
+ *  - equal distances go to the lower primitive id, as in the loops, which
+ *    see primitives in index order.
+ * One ray per work-item (CLRT_LANES 1) tests a node's children together,
+ * one SIMD lane per child (float4 or float8). A block of lanes tests the
+ * children one after the other, one SIMD lane per ray, and enters a child
+ * that any lane needs. Either way the hit children, leaves and inner nodes
+ * alike, are pushed nearest last, each with its entry distance (the smallest
+ * over the lanes that meet it), so the nearest is visited first and a popped
+ * child beyond the closest hit is skipped. Shadow rays take any hit and end
+ * the walk at the first; they too go nearest first, where the usual blocker
+ * is (unordered, they tested 25% more spheres: docs/results/wide-hierarchy.md). The
+ * walk is iterative; CLRT_BVH_STACK entries always suffice (clrt_layout.h). */
 #ifndef CLRT_BVH_H
 #define CLRT_BVH_H
 
@@ -37,34 +45,126 @@ CLRT_INLINE vec3 inverse_direction(const vec3* D) {
 #define BMIN(a, b) ((a) < (b) ? (a) : (b))
 #define BMAX(a, b) ((a) > (b) ? (a) : (b))
 
-/* Lanes whose ray may meet the box within (tmin, limit), the entry and exit
- * distances widened by CLRT_BOX_SLACK. */
-CLRT_INLINE lint box_overlap(__global const clrt_bvh_node* node, const vec3* O, const vec3* inverse, real tmin,
-                             lreal limit) {
-  const lreal x0 = ((real)node->lower[0] - (*O).x) * (*inverse).x, x1 = ((real)node->upper[0] - (*O).x) * (*inverse).x;
-  const lreal y0 = ((real)node->lower[1] - (*O).y) * (*inverse).y, y1 = ((real)node->upper[1] - (*O).y) * (*inverse).y;
-  const lreal z0 = ((real)node->lower[2] - (*O).z) * (*inverse).z, z1 = ((real)node->upper[2] - (*O).z) * (*inverse).z;
+/* Lanes whose ray may meet child k's box within (tmin, limit); `enter`
+ * gets their entry distances, widened by CLRT_BOX_SLACK like the exit. */
+CLRT_INLINE lint child_overlap(__global const clrt_wide_node* node, int k, const vec3* O, const vec3* inverse, real tmin,
+                               lreal limit, lreal* enter_out) {
+  const lreal x0 = ((real)node->lower[0][k] - (*O).x) * (*inverse).x, x1 = ((real)node->upper[0][k] - (*O).x) * (*inverse).x;
+  const lreal y0 = ((real)node->lower[1][k] - (*O).y) * (*inverse).y, y1 = ((real)node->upper[1][k] - (*O).y) * (*inverse).y;
+  const lreal z0 = ((real)node->lower[2][k] - (*O).z) * (*inverse).z, z1 = ((real)node->upper[2][k] - (*O).z) * (*inverse).z;
   lreal enter = BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMIN(z0, z1));
   lreal leave = BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMAX(z0, z1));
   const lreal slack = (fabs(enter) + fabs(leave)) * CLRT_BOX_SLACK;
   enter -= slack;
   leave += slack;
+  *enter_out = enter;
   return (enter <= leave) & (leave >= tmin) & (enter <= limit);
 }
 
-/* The child to visit first: the one on the side the first lane's ray comes
- * from along the node's split axis. */
-CLRT_INLINE int nearer_child(__global const clrt_bvh_node* node, const vec3* D) {
-  const int axis = -node->count - 1;
-  const real d = FIRST_LANE(axis == 0 ? (*D).x : axis == 1 ? (*D).y : (*D).z);
-  return d >= 0 ? node->first : node->first + 1;
+#if CLRT_LANES == 1
+/* One ray, every child of a node at once: the same slab test as above on
+ * CLRT_BVH_WIDTH-wide vectors of the precision's scalar. */
+#if CLRT_BVH_WIDTH == 4
+#define WIDE_LOAD(p) vload4(0, p)
+#define WIDE_STORE(v, p) vstore4(v, 0, p)
+#if CLRT_PRECISION == CLRT_PRECISION_FP64
+typedef double4 wide_real;
+typedef long4 wide_mask;
+#define TO_WIDE_REAL(v) convert_double4(v)
+#define TO_WIDE_MASK(v) convert_long4(v)
+#define WIDE_MASK_TO_INT(v) convert_int4(v)
+#else
+typedef float4 wide_real;
+typedef int4 wide_mask;
+#define TO_WIDE_REAL(v) (v)
+#define TO_WIDE_MASK(v) (v)
+#define WIDE_MASK_TO_INT(v) (v)
+#endif
+#elif CLRT_BVH_WIDTH == 8
+#define WIDE_LOAD(p) vload8(0, p)
+#define WIDE_STORE(v, p) vstore8(v, 0, p)
+#if CLRT_PRECISION == CLRT_PRECISION_FP64
+typedef double8 wide_real;
+typedef long8 wide_mask;
+#define TO_WIDE_REAL(v) convert_double8(v)
+#define TO_WIDE_MASK(v) convert_long8(v)
+#define WIDE_MASK_TO_INT(v) convert_int8(v)
+#else
+typedef float8 wide_real;
+typedef int8 wide_mask;
+#define TO_WIDE_REAL(v) (v)
+#define TO_WIDE_MASK(v) (v)
+#define WIDE_MASK_TO_INT(v) (v)
+#endif
+#else
+#error "CLRT_BVH_WIDTH must be 4 or 8"
+#endif
+
+/* The children whose box the ray may meet within (tmin, limit) (hit[k]
+ * nonzero) and their widened entry distances. */
+CLRT_INLINE void node_children(__global const clrt_wide_node* node, const vec3* O, const vec3* inverse, real tmin,
+                               lreal limit, lint active, real* enter_out, int* hit_out) {
+  const wide_real x0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[0])) - (*O).x) * (*inverse).x;
+  const wide_real x1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[0])) - (*O).x) * (*inverse).x;
+  const wide_real y0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[1])) - (*O).y) * (*inverse).y;
+  const wide_real y1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[1])) - (*O).y) * (*inverse).y;
+  const wide_real z0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[2])) - (*O).z) * (*inverse).z;
+  const wide_real z1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[2])) - (*O).z) * (*inverse).z;
+  wide_real enter = BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMIN(z0, z1));
+  wide_real leave = BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMAX(z0, z1));
+  const wide_real slack = (fabs(enter) + fabs(leave)) * CLRT_BOX_SLACK;
+  enter -= slack;
+  leave += slack;
+  const wide_mask used = TO_WIDE_MASK(WIDE_LOAD(node->count) != 0);
+  const wide_mask hit = (enter <= leave) & (leave >= tmin) & (enter <= limit) & used;
+  WIDE_STORE(enter, enter_out);
+  WIDE_STORE(WIDE_MASK_TO_INT(hit), hit_out);
+  (void)active;
+}
+#else
+/* The smallest of the lanes of an lreal (selects: no NaN here). */
+CLRT_INLINE real lane_min_real(lreal x) {
+#if CLRT_LANES == 16
+  const float8 h8 = BMIN(x.lo, x.hi);
+  const float4 h4 = BMIN(h8.lo, h8.hi);
+#elif CLRT_LANES == 8
+  const float4 h4 = BMIN(x.lo, x.hi);
+#else
+  const float4 h4 = x;
+#endif
+  const float2 h2 = BMIN(h4.lo, h4.hi);
+  return BMIN(h2.x, h2.y);
 }
 
-/* An inner node: go on with the nearer child, keep the other for later. */
-CLRT_INLINE int descend(__global const clrt_bvh_node* node, const vec3* D, int* stack, int* top) {
-  const int near = nearer_child(node, D);
-  stack[(*top)++] = near == node->first ? node->first + 1 : node->first;
-  return near;
+/* A block of rays, child after child: hit[k] when a lane of `active` may
+ * meet child k's box within its interval; enter[k] the smallest widened
+ * entry distance of those lanes. */
+CLRT_INLINE void node_children(__global const clrt_wide_node* node, const vec3* O, const vec3* inverse, real tmin,
+                               lreal limit, lint active, real* enter_out, int* hit_out) {
+  for (int k = 0; k < CLRT_BVH_WIDTH; ++k) {
+    hit_out[k] = 0;
+    if (node->count[k] == 0) continue;
+    lreal enter;
+    const lint lanes = active & child_overlap(node, k, O, inverse, tmin, limit, &enter);
+    if (!ANY(lanes)) continue;
+    hit_out[k] = 1;
+    enter_out[k] = lane_min_real(lanes ? enter : (lreal)REAL_INFINITY);
+  }
+}
+#endif
+
+/* Pushes child reference `child` of a node with entry distance `enter` onto the
+ * stack, keeping the children pushed since `base` sorted farthest first
+ * (insertion: at most CLRT_BVH_WIDTH of them). */
+CLRT_INLINE void push_sorted(int child, real enter, int base, int* stack, real* stack_enter, int* top) {
+  int k = (*top)++;
+  while (k > base && stack_enter[k - 1] < enter) {
+    stack[k] = stack[k - 1];
+    stack_enter[k] = stack_enter[k - 1];
+    --k;
+  }
+  stack[k] = child;
+  stack_enter[k] = enter;
 }
 
 /* The distances to leaf entry `entry` (a sphere's two roots, or a triangle's
@@ -73,9 +173,11 @@ CLRT_INLINE int descend(__global const clrt_bvh_node* node, const vec3* D, int* 
 #if CLRT_HAS_TRIANGLES
 #define SHEAR_ARG , const ray_shear* shear
 #define SHEAR_PASS , &shear
+#define SHEAR_PASS_PTR , shear
 #else
 #define SHEAR_ARG
 #define SHEAR_PASS
+#define SHEAR_PASS_PTR
 #endif
 CLRT_INLINE int entry_roots(int entry, const vec3* O, const vec3* D SHEAR_ARG, lint self, const scene_data* scene,
                             lreal* t1, lreal* t2, lint* tests) {
@@ -94,11 +196,29 @@ CLRT_INLINE int entry_roots(int entry, const vec3* O, const vec3* D SHEAR_ARG, l
   return i;
 }
 
-/* Closest hit in (tmin, tmax) per lane: the sphere index or -1. */
+/* The primitive entries of leaf child [first, first + count) against the
+ * lanes' rays: the nearest root in (tmin, tmax) below `closest`, ties to
+ * the lower id. */
+CLRT_INLINE void closest_in_leaf(int first, int count, const vec3* O, const vec3* D SHEAR_ARG, real tmin, real tmax,
+                                 lint self, const scene_data* scene, lreal* closest, lint* best, lint* tests) {
+  __global const int* primitives = scene->primitives;
+  for (int k = first; k < first + count; ++k) {
+    lreal t1, t2;
+    const int i = entry_roots(primitives[k], O, D SHEAR_PASS_PTR, self, scene, &t1, &t2, tests);
+    /* ties to the lower index, as the loop over every sphere gives them */
+    lint nearer = ((t1 < *closest) | ((t1 == *closest) & ((lint)i < *best))) & (tmin < t1) & (t1 < tmax);
+    *closest = nearer ? t1 : *closest;
+    *best = nearer ? (lint)i : *best;
+    nearer = ((t2 < *closest) | ((t2 == *closest) & ((lint)i < *best))) & (tmin < t2) & (t2 < tmax);
+    *closest = nearer ? t2 : *closest;
+    *best = nearer ? (lint)i : *best;
+  }
+}
+
+/* Closest hit in (tmin, tmax) per lane: the primitive id or -1. */
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
                                       const scene_data* scene, lreal* t_out, lint* tests) {
-  __global const clrt_bvh_node* nodes = scene->nodes;
-  __global const int* primitives = scene->primitives;
+  __global const clrt_wide_node* nodes = scene->nodes;
   const vec3 inverse = inverse_direction(D);
   lreal closest = REAL_INFINITY;
   lint best = -1;
@@ -110,29 +230,38 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
 #if CLRT_HAS_TRIANGLES
   const ray_shear shear = shear_of(D);
 #endif
-  int stack[CLRT_BVH_MAX_DEPTH];
+  int stack[CLRT_BVH_STACK];
+  real stack_enter[CLRT_BVH_STACK];
   int top = 0, index = 0;
   for (;;) {
-    __global const clrt_bvh_node* node = &nodes[index];
-    if (ANY(box_overlap(node, O, &inverse, tmin, BMIN(closest, (lreal)tmax)))) {
-      if (node->count < 0) {
-        index = descend(node, D, stack, &top);
-        continue;
+    __global const clrt_wide_node* node = &nodes[index];
+    real enter[CLRT_BVH_WIDTH];
+    int hit[CLRT_BVH_WIDTH];
+    node_children(node, O, &inverse, tmin, BMIN(closest, (lreal)tmax), MASK_TRUE, enter, hit);
+    /* every hit child, nearest on top: inner ones by their index, leaves as
+     * ~(node * CLRT_BVH_WIDTH + slot) (their entries are read when popped) */
+    const int base = top;
+    for (int k = 0; k < CLRT_BVH_WIDTH; ++k)
+      if (hit[k])
+        push_sorted(node->count[k] > 0 ? ~(index * CLRT_BVH_WIDTH + k) : node->child[k], enter[k], base, stack,
+                    stack_enter, &top);
+    /* the nearest child still worth a visit (beyond every lane's closest
+     * hit, none is): leaves are tested on the way to it */
+    index = -1;
+    while (top > 0) {
+      --top;
+      if (!ANY(stack_enter[top] <= closest)) continue;
+      if (stack[top] >= 0) {
+        index = stack[top];
+        break;
       }
-      for (int k = node->first; k < node->first + node->count; ++k) {
-        lreal t1, t2;
-        const int i = entry_roots(primitives[k], O, D SHEAR_PASS, self, scene, &t1, &t2, tests);
-        /* ties to the lower index, as the loop over every sphere gives them */
-        lint nearer = ((t1 < closest) | ((t1 == closest) & ((lint)i < best))) & (tmin < t1) & (t1 < tmax);
-        closest = nearer ? t1 : closest;
-        best = nearer ? (lint)i : best;
-        nearer = ((t2 < closest) | ((t2 == closest) & ((lint)i < best))) & (tmin < t2) & (t2 < tmax);
-        closest = nearer ? t2 : closest;
-        best = nearer ? (lint)i : best;
-      }
+      const int slot = ~stack[top];
+      __global const clrt_wide_node* parent = &nodes[slot / CLRT_BVH_WIDTH];
+      const int k = slot % CLRT_BVH_WIDTH;
+      closest_in_leaf(parent->child[k], parent->count[k], O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best,
+                      tests);
     }
-    if (top == 0) break;
-    index = stack[--top];
+    if (index < 0) break;
   }
   *t_out = closest;
   return best;
@@ -142,7 +271,7 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
  * when every one of them is blocked. */
 CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
                                   const scene_data* scene, lint* tests) {
-  __global const clrt_bvh_node* nodes = scene->nodes;
+  __global const clrt_wide_node* nodes = scene->nodes;
   __global const int* primitives = scene->primitives;
   const vec3 inverse = inverse_direction(D);
   lint blocked = 0;
@@ -152,25 +281,41 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
 #if CLRT_HAS_TRIANGLES
   const ray_shear shear = shear_of(D);
 #endif
-  int stack[CLRT_BVH_MAX_DEPTH];
+  int stack[CLRT_BVH_STACK];
+  real stack_enter[CLRT_BVH_STACK];
   int top = 0, index = 0;
   for (;;) {
     const lint open = active & !blocked;
     if (!ANY(open)) break;
-    __global const clrt_bvh_node* node = &nodes[index];
-    if (ANY(open & box_overlap(node, O, &inverse, tmin, (lreal)tmax))) {
-      if (node->count < 0) {
-        index = descend(node, D, stack, &top);
-        continue;
+    __global const clrt_wide_node* node = &nodes[index];
+    real enter[CLRT_BVH_WIDTH];
+    int hit[CLRT_BVH_WIDTH];
+    node_children(node, O, &inverse, tmin, (lreal)tmax, open, enter, hit);
+    /* nearest first, as the closest-hit walk: a blocker near the surface
+     * (the usual one) is found before the far subtrees are walked */
+    const int base = top;
+    for (int k = 0; k < CLRT_BVH_WIDTH; ++k)
+      if (hit[k])
+        push_sorted(node->count[k] > 0 ? ~(index * CLRT_BVH_WIDTH + k) : node->child[k], enter[k], base, stack,
+                    stack_enter, &top);
+    index = -1;
+    while (top > 0) {
+      --top;
+      if (stack[top] >= 0) {
+        index = stack[top];
+        break;
       }
-      for (int k = node->first; k < node->first + node->count; ++k) {
+      const int slot = ~stack[top];
+      __global const clrt_wide_node* parent = &nodes[slot / CLRT_BVH_WIDTH];
+      const int k = slot % CLRT_BVH_WIDTH;
+      for (int e = parent->child[k]; e < parent->child[k] + parent->count[k]; ++e) {
         lreal t1, t2;
-        entry_roots(primitives[k], O, D SHEAR_PASS, self, scene, &t1, &t2, tests);
+        entry_roots(primitives[e], O, D SHEAR_PASS, self, scene, &t1, &t2, tests);
         blocked |= ((tmin < t1) & (t1 < tmax)) | ((tmin < t2) & (t2 < tmax));
       }
+      if (ALL(blocked | !active)) return blocked;
     }
-    if (top == 0) break;
-    index = stack[--top];
+    if (index < 0) break;
   }
   return blocked;
 }

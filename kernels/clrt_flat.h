@@ -16,7 +16,7 @@ typedef struct scene_data {
   __global const clrt_params* params;
   __global const clrt_sphere* spheres;
   __global const clrt_light* lights;
-  __global const clrt_bvh_node* nodes;
+  __global const clrt_wide_node* nodes;
   __global const int* primitives;
   __global const clrt_plane* planes;
   __global const clrt_triangle* triangles;

@@ -157,13 +157,14 @@ typedef struct clrt_ray_counts {
   clrt_i32 refraction;
 } clrt_ray_counts;
 
-/* A node of the bounding volume hierarchy over the scene's primitives
- * (host/render/bvh.hpp builds it; kernels/clrt_bvh.h walks it). Its box is
+/* A node of the bounding volume hierarchy over the scene's primitives as
+ * the host builds it (host/render/bvh.hpp; the kernel walks its wide form,
+ * clrt_wide_node below). Its box is
  * padded and rounded outward on the host, so that no rounding of a kernel's
  * primitive or box test lets the hierarchy change which primitive a ray hits.
  * A leaf lists `count` (> 0) entries of the primitive list from `first`; an
  * inner node has its two children at `first` and `first + 1`, and `count` is
- * -(1 + the axis it was split on), so a ray visits the nearer child first. */
+ * -(1 + the axis it was split on). */
 typedef struct clrt_bvh_node {
   clrt_f32 lower[3];
   clrt_i32 first;
@@ -180,9 +181,34 @@ typedef struct clrt_bvh_node {
 #define CLRT_PRIMITIVE_TRIANGLE 1
 #define CLRT_PRIMITIVE_KIND_SHIFT 28
 #define CLRT_PRIMITIVE_INDEX_MASK 0x0fffffff
-/* Deepest leaf the host builds; a walk keeps at most one node per level on
- * its stack, so CLRT_BVH_MAX_DEPTH entries always suffice. */
+/* Deepest leaf the host builds (in the binary tree). */
 #define CLRT_BVH_MAX_DEPTH 48
+
+/* The hierarchy the kernel walks: the binary tree above collapsed into
+ * nodes of up to CLRT_BVH_WIDTH children (host/render/wide_bvh.hpp), whose
+ * boxes are stored axis by axis, one value per child (structure of arrays),
+ * so that a ray is tested against all of a node's children in one SIMD step
+ * (kernels/clrt_bvh.h). The host passes the width it was compiled with to
+ * the kernel (-DCLRT_BVH_WIDTH, build_options.cpp): 4 or 8.
+ * Child k: count[k] > 0 is a leaf listing count[k] entries of the primitive
+ * list from child[k]; count[k] < 0 an inner node, nodes[child[k]]; 0 an
+ * empty slot (or an empty leaf), never entered. Its box lower[a][k] ..
+ * upper[a][k] on axis a is the binary node's, padded as described above. */
+#ifndef CLRT_BVH_WIDTH /* 8: measured faster than 4 (docs/results/wide-hierarchy.md) */
+#define CLRT_BVH_WIDTH 8
+#endif
+typedef struct clrt_wide_node {
+  clrt_f32 lower[3][CLRT_BVH_WIDTH];
+  clrt_f32 upper[3][CLRT_BVH_WIDTH];
+  clrt_i32 child[CLRT_BVH_WIDTH];
+  clrt_i32 count[CLRT_BVH_WIDTH];
+} clrt_wide_node; /* 32 * CLRT_BVH_WIDTH bytes */
+/* A wide node is at least one binary level below its parent, so inner
+ * nodes are at most CLRT_BVH_MAX_DEPTH - 2 wide levels down; a walk's stack
+ * holds the children it has yet to visit, at most CLRT_BVH_WIDTH - 1 per
+ * level above the current node plus the current node's CLRT_BVH_WIDTH:
+ * CLRT_BVH_STACK entries always suffice. */
+#define CLRT_BVH_STACK (CLRT_BVH_MAX_DEPTH * (CLRT_BVH_WIDTH - 1))
 
 /* Every member of every struct above, in declaration order, as
  * FIELD(struct, member): the one list that the host's static_asserts, the
@@ -260,6 +286,10 @@ typedef struct clrt_bvh_node {
   FIELD(clrt_bvh_node, lower)          \
   FIELD(clrt_bvh_node, first)          \
   FIELD(clrt_bvh_node, upper)          \
-  FIELD(clrt_bvh_node, count)
+  FIELD(clrt_bvh_node, count)          \
+  FIELD(clrt_wide_node, lower)         \
+  FIELD(clrt_wide_node, upper)         \
+  FIELD(clrt_wide_node, child)         \
+  FIELD(clrt_wide_node, count)
 
 #endif /* CLRT_LAYOUT_H */

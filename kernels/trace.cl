@@ -205,7 +205,7 @@ CLRT_INLINE vec3 trace_camera_ray(const lreal dx, const lreal dy, const real* m,
 __kernel void render(__global const clrt_params* params, __global const clrt_sphere* spheres,
                      __global const clrt_light* lights, __global CANVAS_T* out, __global int* aux,
                      __global clrt_ray_counts* ray_counts, const int x0, const int y0, const int tile_w,
-                     const int tile_h, __global const clrt_bvh_node* nodes, __global const int* primitives,
+                     const int tile_h, __global const clrt_wide_node* nodes, __global const int* primitives,
                      __global const clrt_plane* planes, __global const clrt_triangle* triangles,
                      __global const clrt_material* materials, const int pass
 #ifdef CLRT_OUT_LAYERS

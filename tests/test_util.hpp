@@ -31,9 +31,12 @@ inline clrt::DeviceInfo test_device() {
   return clrt::select_device(test_device_spec());
 }
 
-// A renderer on the test device.
-inline clrt::Renderer renderer(const clrt::KernelConfig& kernel, clrt::TilePolicy tiles = {},
-                               clrt::LocalSize local = {}) {
+// A renderer on the test device. Without a forced lane count it renders with
+// the device's default, without the timed probe of lane counts (one program
+// per configuration, the same every run; the image does not depend on the
+// lanes, and the probe has tests of its own in test_kernel_features.cpp).
+inline clrt::Renderer renderer(clrt::KernelConfig kernel, clrt::TilePolicy tiles = {}, clrt::LocalSize local = {}) {
+  kernel.probe_lanes = false;
   return clrt::Renderer({test_device()}, clrt::RenderSettings{kernel, tiles, local});
 }
 // One frame on the test device.

@@ -19,32 +19,6 @@ int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev) {
   return dev.native_float_width >= 16 ? 16 : 8;
 }
 
-double median_sphere_pixels(const Scene& scene, int width) {
-  const Camera& camera = scene.camera;
-  const Vec3 forward{camera.rotation[2], camera.rotation[5], camera.rotation[8]};  // R (0, 0, 1)
-  const double forward_length = length(forward);
-  const double pixels_per_unit = camera.projection_plane_d * double(width) / camera.viewport_w;
-  std::vector<double> sizes;
-  sizes.reserve(scene.spheres.size());
-  for (const Sphere& sphere : scene.spheres) {
-    const double depth = dot(sphere.center - camera.position, forward) / forward_length;
-    if (depth > sphere.radius) sizes.push_back(2 * sphere.radius / depth * pixels_per_unit);
-  }
-  if (sizes.empty() || !(forward_length > 0)) return std::numeric_limits<double>::infinity();
-  auto middle = sizes.begin() + std::ptrdiff_t(sizes.size() / 2);
-  std::nth_element(sizes.begin(), middle, sizes.end());
-  return *middle;
-}
-
-int scene_lanes(const KernelConfig& cfg, const DeviceInfo& dev, const Scene& scene, int width, bool bvh) {
-  if (cfg.lanes != 0) return cfg.lanes;
-  const int lanes = default_lanes(cfg, dev);
-  if (lanes > 1 && bvh && scene.spheres.size() >= kRayWalkMinSpheres &&
-      median_sphere_pixels(scene, width) < kPacketMinSpherePixels)
-    return 1;
-  return lanes;
-}
-
 int packet_rows(const KernelConfig& cfg) {
   const int lanes = kernel_lanes(cfg);
   return lanes >= 16 ? 4 : lanes >= 4 ? 2 : 1;
@@ -144,8 +118,10 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
     options.push_back(define("CLRT_SUBSAMPLE", cfg.subsample == Subsample::Shade ? 1 : 2));
   if (int lanes = kernel_lanes(cfg); lanes > 1) options.push_back(define("CLRT_LANES", lanes));
   if (int rows = packet_rows(cfg); rows > 1) options.push_back(define("CLRT_PACKET_ROWS", rows));
-  if (uses_bvh(cfg.accel, features.sphere_count + features.triangle_count, cfg.precision))
+  if (uses_bvh(cfg.accel, features.sphere_count + features.triangle_count, cfg.precision)) {
     options.push_back("-DCLRT_BVH");
+    options.push_back(define("CLRT_BVH_WIDTH", CLRT_BVH_WIDTH));  // the host's clrt_wide_node
+  }
   if (cfg.specialize) add_specialization(features, options);
   // The tree walk's pending rays take a slot per level (trace.cl): a scene
   // that refracts gets as many as its depth class needs, not CLRT_MAX_DEPTH

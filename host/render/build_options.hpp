@@ -19,7 +19,11 @@ struct KernelConfig {
   bool specialize = true;     // derive constants/features from the scene
   bool count_rays = false;    // per-pixel ray counters (bench)
   bool denorms_zero = true;   // -cl-denorms-are-zero (PoCL stalls otherwise)
-  int lanes = 0;              // pixels per work-item (SIMD lanes); 0 = the device's default_lanes()
+  int lanes = 0;              // pixels per work-item (SIMD lanes); 0 = chosen per scene (lane_choice.hpp)
+  // With lanes 0: time the candidate lane counts on the scene before its
+  // first frame (lane_choice.hpp); false: default_lanes(), no probe (tests
+  // that want one program per configuration; the image is the same).
+  bool probe_lanes = true;
   bool use_cache = true;      // on-disk program binary cache (--no-cache)
   bool verbose = false;       // log build options and cache use on stderr
   std::string kernel_dir;     // "" = embedded kernels
@@ -57,22 +61,6 @@ int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev);
 // refracts at recursion depth `depth`: the smallest of 4, 8, 16, 32, 64 that
 // is >= depth (-DCLRT_DEPTH_BOUND; one program per class of depths).
 int pending_depth_bound(int depth);
-
-// The median, over the spheres in front of the camera, of a sphere's
-// diameter on the image in pixels (infinity without such spheres).
-double median_sphere_pixels(const Scene& scene, int width);
-// One ray per work-item instead of a block of lanes for a hierarchy of at
-// least kRayWalkMinSpheres spheres whose median sphere is smaller than
-// kPacketMinSpherePixels: there the rays of a block part ways within a few
-// levels and a block walks the union of their paths. Measured (PoCL, 16
-// lanes against 1, docs/results/README.md): 1 000 000 spheres at 5.4 px,
-// one ray 2.1x faster; 100 000 at 5.8 and 7.7 px, even; 100 000 at 11.6 px
-// and 10 000 at 3.1 to 25 px, the block 1.1 to 1.6x faster.
-constexpr size_t kRayWalkMinSpheres = 100000;
-constexpr double kPacketMinSpherePixels = 8;
-// The lanes for rendering `scene` `width` pixels wide: cfg.lanes if set;
-// else default_lanes(), but 1 where the rule above says so.
-int scene_lanes(const KernelConfig& cfg, const DeviceInfo& dev, const Scene& scene, int width, bool bvh);
 
 // The build options, one entry each ("-cl-std=CL1.2", "-DCLRT_LANES=8", ...;
 // cfg.extra_options is one entry, verbatim). Features are used only by

@@ -11,6 +11,7 @@
 #include <thread>
 #include <utility>
 
+#include "render/wide_bvh.hpp"
 #include "util/doing.hpp"
 #include "util/error.hpp"
 
@@ -334,6 +335,7 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   ThreadBudget budget(threads);
   Builder(items, bvh, budget).build(0, 0, items.size(), 0);
+  bvh.wide = collapse_bvh(bvh.nodes);
   return bvh;
 }
 

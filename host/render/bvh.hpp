@@ -2,7 +2,8 @@
 // the host and walked by the kernel (kernels/clrt_bvh.h) in place of testing
 // every sphere: binned surface-area heuristic, at most kBvhLeafSize
 // primitives per leaf where a split pays, never deeper than
-// CLRT_BVH_MAX_DEPTH.
+// CLRT_BVH_MAX_DEPTH; the binary tree is then collapsed into the wide nodes
+// the kernel walks (wide_bvh.hpp).
 //
 // The boxes are padded and rounded outward so that the hierarchy never
 // changes which sphere a ray hits, at any precision variant
@@ -49,11 +50,13 @@ constexpr int kBvhMaxLeafSize = 4 * kBvhLeafSize;
 constexpr int kBvhBins = 16;     // SAH candidates per axis
 
 struct Bvh {
-  std::vector<clrt_bvh_node> nodes;  // nodes[0] is the root
+  std::vector<clrt_bvh_node> nodes;  // the binary tree; nodes[0] is the root
+  std::vector<clrt_wide_node> wide;  // the same tree collapsed (wide_bvh.hpp): what the kernel walks
   std::vector<clrt_i32> primitives;  // the leaves' entries (kind << shift | index)
-  int depth = 0;                     // deepest leaf, the root being 0
+  int depth = 0;                     // deepest leaf of the binary tree, the root being 0
   double padding = 0;                // added to every sphere's box, in scene units (naive: at least)
-  size_t bytes() const { return nodes.size() * sizeof(clrt_bvh_node) + primitives.size() * sizeof(clrt_i32); }
+  // What the device holds: the wide nodes and the entries.
+  size_t bytes() const { return wide.size() * sizeof(clrt_wide_node) + primitives.size() * sizeof(clrt_i32); }
 };
 
 // The hierarchy of `scene`'s spheres and triangles (empty scene: one empty

@@ -8,6 +8,7 @@
 
 #include "cl/kernel_source.hpp"
 #include "cl/program.hpp"
+#include "render/lane_choice.hpp"
 #include "render/scene_buffers.hpp"
 #include "util/error.hpp"
 #include "util/log.hpp"
@@ -31,7 +32,7 @@ cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::
 DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local, bool map_results,
                                bool overlap)
     : device_(device), config_(std::move(config)), requested_lanes_(config_.lanes), local_(local), overlap_(overlap) {
-  if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);
+  if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);  // until prepare() chooses
   map_results_ = map_results && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
   context_ = cl::Context(device_.device);
   queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
@@ -41,15 +42,6 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
 
 void DeviceRenderer::prepare(const Scene& scene, int width, int height, int depth, Sampling sampling, const Bvh* bvh) {
   ms_per_row_ = 0;  // another scene, size or depth: another rate
-  if (requested_lanes_ == 0) {
-    KernelConfig requested = config_;
-    requested.lanes = 0;
-    config_.lanes = scene_lanes(requested, device_, scene, width, bvh != nullptr);
-    if (config_.verbose && bvh)
-      log_message(LogLevel::Info, "lanes: " + std::to_string(config_.lanes) + " (" +
-                                      std::to_string(scene.spheres.size()) + " spheres, median " +
-                                      std::to_string(median_sphere_pixels(scene, width)) + " px on the image)");
-  }
   if (sampling.subsample != Subsample::Off && sampling.spp != 1)
     throw UserError("subsampling needs one sample per pixel (--spp 1)");
   if (sampling.subsample != config_.subsample) {
@@ -57,24 +49,19 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
     for (ResultSlot& slot : slots_) slot.capacity = 0;  // the hit-id buffers' sizes change
     config_.subsample = sampling.subsample;
   }
-  std::string opts = build_options(config_, scene, depth, device_.fp64);
-  if (opts != options_ || !kernel_()) {
-    BuildStats bs;
-    program_ = build_program(context_, device_, source_, opts, &bs, BuildFlags{config_.use_cache, config_.verbose});
-    kernel_ = cl::Kernel(program_, "render");
-    // Default local size: (preferred multiple, 1), within the kernel's limit.
-    size_t pm = kernel_.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device_.device);
-    size_t max_wg = kernel_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_.device);
-    default_local_x_ = int(std::max<size_t>(1, std::min(pm, max_wg)));
-    max_work_group_ = max_wg;
-    options_ = opts;
-    timings_.build_ms = bs.ms;
-    timings_.build_cached = bs.cached;
-  } else {
-    timings_.build_ms = 0;
-    timings_.build_cached = true;
+  timings_.build_ms = 0;
+  timings_.build_cached = true;
+  timings_.probe_ms = 0;
+  KernelConfig requested = config_;
+  requested.lanes = requested_lanes_;
+  const std::vector<int> candidates = lane_candidates(requested, device_, bvh != nullptr);
+  // (the first candidate's options also check them: fp64, lanes, before any upload)
+  config_.lanes = candidates.front();
+  const std::string first_options = build_options(config_, scene, depth, device_.fp64);
+  if (candidates.size() == 1) {
+    use_program(first_options);
+    check_local_size();
   }
-  check_local_size();
   auto t0 = std::chrono::steady_clock::now();
   SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling);
   params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
@@ -84,9 +71,9 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
     throw std::logic_error("BVH build without its hierarchy");
   // (one-element stand-ins when the kernel does not walk a hierarchy; both
   // branches lvalues, so the hierarchy is uploaded without a copy)
-  const std::vector<clrt_bvh_node> no_nodes;
+  const std::vector<clrt_wide_node> no_nodes;
   const std::vector<clrt_i32> no_primitives;
-  nodes_ = upload(context_, queue_, bvh ? bvh->nodes : no_nodes);
+  nodes_ = upload(context_, queue_, bvh ? bvh->wide : no_nodes);
   primitives_ = upload(context_, queue_, bvh ? bvh->primitives : no_primitives);
   planes_ = upload(context_, queue_, data.planes);
   triangles_ = upload(context_, queue_, data.triangles);
@@ -94,17 +81,85 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   timings_.upload_ms = ms_since(t0);
   width_ = width;
   height_ = height;
+  if (candidates.size() > 1) choose_lanes(scene, depth, data, bvh);
+}
+
+void DeviceRenderer::use_program(const std::string& opts) {
+  if (opts == built_.options && built_.kernel()) return;
+  BuildStats bs;
+  BuiltProgram built;
+  built.program = build_program(context_, device_, source_, opts, &bs, BuildFlags{config_.use_cache, config_.verbose});
+  built.kernel = cl::Kernel(built.program, "render");
+  // Default local size: (preferred multiple, 1), within the kernel's limit.
+  const size_t pm = built.kernel.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device_.device);
+  built.max_work_group = built.kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_.device);
+  built.default_local_x = int(std::max<size_t>(1, std::min(pm, built.max_work_group)));
+  built.options = opts;
+  built.lanes = config_.lanes;
+  built_ = built;
+  timings_.build_ms += bs.ms;
+  timings_.build_cached = timings_.build_cached && bs.cached;
+}
+
+void DeviceRenderer::choose_lanes(const Scene& scene, int depth, const SceneData& data, const Bvh* bvh) {
+  KernelConfig requested = config_;
+  requested.lanes = requested_lanes_;
+  const std::vector<int> candidates = lane_candidates(requested, device_, bvh != nullptr);
+  const std::string key =
+      lane_choice_key(device_, build_options(config_, scene, depth, device_.fp64), data, bvh ? &bvh->wide : nullptr);
+  const int remembered = recall_lanes(key);
+  if (remembered != 0) {
+    config_.lanes = remembered;
+    use_program(build_options(config_, scene, depth, device_.fp64));
+    check_local_size();
+    return;
+  }
+  const auto t0 = Clock::now();
+  std::vector<BuiltProgram> programs;
+  Image scratch(width_, height_, config_.output);
+  for (int lanes : candidates) {
+    config_.lanes = lanes;
+    use_program(build_options(config_, scene, depth, device_.fp64));
+    check_local_size();
+    programs.push_back(built_);
+    render_tile(0, 0, std::min(width_, 16), std::min(height_, 4), scratch);  // untimed first launch
+  }
+  const double build_ms = timings_.build_ms;
+  std::vector<double> best(programs.size(), std::numeric_limits<double>::infinity());
+  for (int round = 0; round < kProbeRounds; ++round)
+    for (size_t i = 0; i < programs.size(); ++i) {
+      built_ = programs[i];
+      config_.lanes = built_.lanes;
+      best[i] = std::min(best[i], probe_ms(scratch));
+    }
+  const size_t fastest = size_t(std::min_element(best.begin(), best.end()) - best.begin());
+  built_ = programs[fastest];
+  config_.lanes = built_.lanes;
+  remember_lanes(key, config_.lanes);
+  timings_.probe_ms = ms_since(t0) - build_ms;
+  if (config_.verbose) {
+    std::string times;
+    for (size_t i = 0; i < programs.size(); ++i)
+      times += (i ? ", " : "") + std::to_string(programs[i].lanes) + " lanes " + std::to_string(best[i]) + " ms";
+    log_message(LogLevel::Info, "lanes: " + std::to_string(config_.lanes) + " (probe: " + times + ")");
+  }
+}
+
+double DeviceRenderer::probe_ms(Image& scratch) {
+  double total = 0;
+  for (const RowBand& band : probe_bands(height_)) total += render_tile(0, band.y0, width_, band.rows, scratch).ms;
+  return total;
 }
 
 void DeviceRenderer::check_local_size() const {
   if (local_.x <= 0 && local_.y <= 0) return;
   const size_t lx = size_t(std::max(1, local_.x)), ly = size_t(std::max(1, local_.y));
   const auto item_sizes = device_.device.getInfo<CL_DEVICE_MAX_WORK_ITEM_SIZES>();
-  const bool fits = lx <= max_work_group_ && ly <= max_work_group_ && lx * ly <= max_work_group_ &&
+  const bool fits = lx <= built_.max_work_group && ly <= built_.max_work_group && lx * ly <= built_.max_work_group &&
                     (item_sizes.size() < 2 || (lx <= item_sizes[0] && ly <= item_sizes[1]));
   if (!fits)
     throw UserError("--local " + std::to_string(lx) + "x" + std::to_string(ly) + ": exceeds what " + device_.name +
-                    " allows for this kernel (at most " + std::to_string(max_work_group_) + " work-items per group" +
+                    " allows for this kernel (at most " + std::to_string(built_.max_work_group) + " work-items per group" +
                     (item_sizes.size() >= 2 ? ", " + std::to_string(item_sizes[0]) + "x" + std::to_string(item_sizes[1])
                                             : std::string()) +
                     " per dimension)");
@@ -170,22 +225,22 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   next_slot_ = (next_slot_ + 1) % 2;
   ResultSlot& slot = slots_[tile.slot];  // free: its last tile was finished
   ensure_slot(slot, n);
-  kernel_.setArg(0, params_);
-  kernel_.setArg(1, spheres_);
-  kernel_.setArg(2, lights_);
-  kernel_.setArg(3, slot.colors);
-  kernel_.setArg(4, slot.classes);
-  kernel_.setArg(5, slot.counters);
-  kernel_.setArg(6, cl_int(x0));
-  kernel_.setArg(7, cl_int(y0));
-  kernel_.setArg(8, cl_int(w));
-  kernel_.setArg(9, cl_int(h));
-  kernel_.setArg(10, nodes_);
-  kernel_.setArg(11, primitives_);
-  kernel_.setArg(12, planes_);
-  kernel_.setArg(13, triangles_);
-  kernel_.setArg(14, materials_);
-  if (config_.output.layers) kernel_.setArg(16, slot.layers);  // (an argument of layer builds only)
+  built_.kernel.setArg(0, params_);
+  built_.kernel.setArg(1, spheres_);
+  built_.kernel.setArg(2, lights_);
+  built_.kernel.setArg(3, slot.colors);
+  built_.kernel.setArg(4, slot.classes);
+  built_.kernel.setArg(5, slot.counters);
+  built_.kernel.setArg(6, cl_int(x0));
+  built_.kernel.setArg(7, cl_int(y0));
+  built_.kernel.setArg(8, cl_int(w));
+  built_.kernel.setArg(9, cl_int(h));
+  built_.kernel.setArg(10, nodes_);
+  built_.kernel.setArg(11, primitives_);
+  built_.kernel.setArg(12, planes_);
+  built_.kernel.setArg(13, triangles_);
+  built_.kernel.setArg(14, materials_);
+  if (config_.output.layers) built_.kernel.setArg(16, slot.layers);  // (an argument of layer builds only)
   // Each work-item shades a block of kernel_lanes(config_) pixels,
   // packet_rows(config_) of them high. With subsampling a tile is two
   // launches (kernels/trace.cl): the ones that take every other column
@@ -196,7 +251,7 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   // PoCL compiles a new work-group function for each (measured: 1.2 s per
   // 640x480 frame of 5 ms bands instead of 20 ms; docs/results/archive.md).
   // (check_local_size() bounded both by the device's limits.)
-  const size_t lx = size_t(local_.x > 0 ? local_.x : default_local_x_), ly = size_t(local_.y > 0 ? local_.y : 1);
+  const size_t lx = size_t(local_.x > 0 ? local_.x : built_.default_local_x), ly = size_t(local_.y > 0 ? local_.y : 1);
   const cl::NDRange local(lx, ly);
   // The global size for `columns` columns of the tile, padded to a multiple
   // of the local size, in size_t (no overflow for any tile and local size
@@ -210,14 +265,14 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   };
   const size_t every_other = (size_t(w) + 1) / 2;
   const Subsample mode = config_.subsample;
-  kernel_.setArg(15, cl_int(0));
-  tile.launch = start_timed(queue_, kernel_, global_for(mode == Subsample::Off ? size_t(w) : every_other), local);
+  built_.kernel.setArg(15, cl_int(0));
+  tile.launch = start_timed(queue_, built_.kernel, global_for(mode == Subsample::Off ? size_t(w) : every_other), local);
   if (mode != Subsample::Off) {
     // Pass 1 after pass 0 (an in-order queue): timed as one launch, from
     // the first's start to the second's end. Shade's pass 1 shades every
     // column, interpolate's the odd ones.
-    kernel_.setArg(15, cl_int(1));
-    tile.launch = start_timed_after(tile.launch, queue_, kernel_,
+    built_.kernel.setArg(15, cl_int(1));
+    tile.launch = start_timed_after(tile.launch, queue_, built_.kernel,
                                     global_for(mode == Subsample::Shade ? size_t(w) : every_other), local);
   }
 

@@ -15,6 +15,7 @@
 #include "image/layers.hpp"
 #include "render/build_options.hpp"
 #include "render/bvh.hpp"
+#include "render/scene_buffers.hpp"
 #include "scene/sampling.hpp"
 #include "scene/scene.hpp"
 
@@ -42,6 +43,7 @@ struct DeviceTimings {
   double build_ms = 0;  // program build (or cache load)
   bool build_cached = false;
   double upload_ms = 0;    // scene buffers to the device
+  double probe_ms = 0;     // the lanes probe (choose_lanes()), 0 when none ran
   double download_ms = 0;  // tiles back into the host image
 };
 
@@ -99,7 +101,7 @@ class DeviceRenderer {
 
   const DeviceTimings& timings() const { return timings_; }
   const RayCounts& ray_counts() const { return counts_; }
-  const std::string& options() const { return options_; }
+  const std::string& options() const { return built_.options; }
   const DeviceInfo& device() const { return device_; }
   int width() const { return width_; }
   int height() const { return height_; }
@@ -140,17 +142,35 @@ class DeviceRenderer {
   void drain() noexcept;
   // UserError when the local size does not fit the device and kernel.
   void check_local_size() const;
+  // A built program and what the launches need to know of it.
+  struct BuiltProgram {
+    cl::Program program;
+    cl::Kernel kernel;
+    std::string options;
+    int lanes = 0;               // config_.lanes it was built for
+    int default_local_x = 1;     // preferred work-group size multiple, within max_work_group
+    size_t max_work_group = 1;   // CL_KERNEL_WORK_GROUP_SIZE
+  };
+  // Makes the program of `options` (config_.lanes as built) the one
+  // launched, building it unless it already is; adds to timings_.
+  void use_program(const std::string& options);
+  // Where no --lanes is forced and several lane counts are candidates
+  // (render/lane_choice.hpp): the one the process found fastest for this
+  // work before, else the fastest in a timed probe of a few bands of rows.
+  // The scene's buffers must be uploaded and width_/height_ set.
+  void choose_lanes(const Scene& scene, int depth, const SceneData& data, const Bvh* bvh);
+  // The kernel time of rendering the probe's bands into `scratch`.
+  double probe_ms(Image& scratch);
 
   DeviceInfo device_;
   KernelConfig config_;  // lanes resolved: the device's default, or per scene (prepare())
-  int requested_lanes_;  // config.lanes as given (0: chosen per scene, scene_lanes())
+  int requested_lanes_;  // config.lanes as given (0: chosen per scene, choose_lanes())
   LocalSize local_;
   cl::Context context_;
   cl::CommandQueue queue_;
   cl::CommandQueue transfer_queue_;  // read path: results read here while the next kernel runs
-  cl::Program program_;
-  cl::Kernel kernel_;
-  std::string options_, source_;
+  BuiltProgram built_;
+  std::string source_;
   cl::Buffer params_, spheres_, lights_, nodes_, primitives_, planes_, triangles_, materials_;
   bool map_results_ = false;  // asked for and CL_DEVICE_HOST_UNIFIED_MEMORY: mapped, not read
   bool overlap_ = true;
@@ -159,8 +179,6 @@ class DeviceRenderer {
   std::vector<PendingTile> pending_;  // oldest first
   int next_slot_ = 0;
   int width_ = 0, height_ = 0;
-  int default_local_x_ = 1;    // set when the kernel is built
-  size_t max_work_group_ = 1;  // CL_KERNEL_WORK_GROUP_SIZE of the built kernel
   DeviceTimings timings_;
   FrameLayers* layers_out_ = nullptr;  // begin_frame()'s
   RayCounts counts_;

@@ -26,6 +26,8 @@ static_assert(sizeof(clrt_plane) == 64, "clrt_plane size");
 static_assert(sizeof(clrt_triangle) == 96, "clrt_triangle size");
 static_assert(sizeof(clrt_ray_counts) == 20, "clrt_ray_counts size");
 static_assert(sizeof(clrt_bvh_node) == 32, "clrt_bvh_node size");
+static_assert(sizeof(clrt_wide_node) == 32 * CLRT_BVH_WIDTH, "clrt_wide_node size");
+static_assert(CLRT_BVH_WIDTH == 4 || CLRT_BVH_WIDTH == 8, "CLRT_BVH_WIDTH: 4 or 8");
 
 namespace {
 

@@ -2,7 +2,10 @@
 // through it equal to the images that test every sphere, byte for byte, at
 // every precision variant, on scenes of 1 to 10 000 spheres and on the
 // stiff and extreme cases of the stability suite.
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
 #include <cstring>
 #include <vector>
 
@@ -107,7 +110,79 @@ Image render(const Scene& scene, int width, int height, int depth, KernelConfig 
   return image;
 }
 
+// The wide nodes the kernel walks: every entry of the primitive list in
+// exactly one leaf child, each child's box the box of a binary node (so it
+// holds its primitives, check_structure()), every node reached once, and
+// no walk needing more stack than CLRT_BVH_STACK: a node's walk keeps the
+// children of its ancestors not yet visited (all but one each) and pushes
+// its own.
+void check_wide(const Bvh& bvh) {
+  REQUIRE(!bvh.wide.empty());
+  std::vector<int> entry_seen(bvh.primitives.size(), 0), node_seen(bvh.wide.size(), 0);
+  struct Visit {
+    size_t node;
+    int pending;  // stack entries below this node's own pushes
+  };
+  std::vector<Visit> todo{{0, 0}};
+  int deepest_stack = 0;
+  while (!todo.empty()) {
+    const Visit v = todo.back();
+    todo.pop_back();
+    REQUIRE(v.node < bvh.wide.size());
+    ++node_seen[v.node];
+    const clrt_wide_node& n = bvh.wide[v.node];
+    int used = 0;  // (leaves are pushed too: closest-hit walks test them when popped)
+    for (int k = 0; k < CLRT_BVH_WIDTH; ++k) used += n.count[k] != 0;
+    deepest_stack = std::max(deepest_stack, v.pending + used);
+    for (int k = 0; k < CLRT_BVH_WIDTH; ++k) {
+      if (n.count[k] < 0) {
+        CHECK(n.count[k] == -1);
+        todo.push_back({size_t(n.child[k]), v.pending + used - 1});
+        continue;
+      }
+      for (int e = n.child[k]; e < n.child[k] + n.count[k]; ++e) {
+        REQUIRE(size_t(e) < entry_seen.size());
+        ++entry_seen[size_t(e)];
+      }
+      // (a leaf's box holds its primitives: it is a binary node's box, as
+      // check_structure() checks; here, that it is some node's box)
+      if (n.count[k] == 0) continue;
+      bool found = false;
+      for (const clrt_bvh_node& b : bvh.nodes)
+        if (b.count == n.count[k] && b.first == n.child[k]) {
+          found = true;
+          for (int a = 0; a < 3; ++a) {
+            CHECK(b.lower[a] == n.lower[a][k]);
+            CHECK(b.upper[a] == n.upper[a][k]);
+          }
+          break;
+        }
+      CHECK(found);
+    }
+  }
+  for (int seen : entry_seen) CHECK(seen == 1);
+  for (int seen : node_seen) CHECK(seen == 1);
+  CHECK(deepest_stack <= CLRT_BVH_STACK);
+}
+
 }  // namespace
+
+TEST_CASE("the wide hierarchy holds every entry once, in the binary tree's boxes", "[bvh]") {
+  for (size_t count : {0, 1, 2, 5, 17, 100, 3000}) {
+    INFO(count << " spheres");
+    const Bvh bvh = build_bvh(random_spheres(count), Precision::Robust);
+    check_wide(bvh);
+    // (binary inner nodes become wide nodes: fewer than the binary tree's)
+    CHECK(bvh.wide.size() <= bvh.nodes.size() / 2 + 1);
+  }
+  // Deep, unbalanced: a line of spheres a factor 2 apart, and coincident ones.
+  Scene line = random_spheres(0);
+  for (int i = 0; i < 60; ++i) line.spheres.push_back({{std::ldexp(1.0, i - 20), 1, 5}, 1e-7, {1, 2, 3}, -1, 0});
+  check_wide(build_bvh(line, Precision::Robust));
+  Scene same = random_spheres(1);
+  same.spheres.assign(200, same.spheres[0]);
+  check_wide(build_bvh(same, Precision::Robust));
+}
 
 TEST_CASE("the hierarchy holds every sphere once, in boxes that hold them", "[bvh]") {
   for (size_t count : {0, 1, 2, 5, 17, 100, 3000}) {
@@ -115,7 +190,7 @@ TEST_CASE("the hierarchy holds every sphere once, in boxes that hold them", "[bv
     const Scene scene = random_spheres(count);
     const Bvh bvh = build_bvh(scene, Precision::Robust);
     check_structure(scene, bvh);
-    CHECK(bvh.bytes() == bvh.nodes.size() * 32 + bvh.primitives.size() * 4);
+    CHECK(bvh.bytes() == bvh.wide.size() * sizeof(clrt_wide_node) + bvh.primitives.size() * 4);
   }
   for (const auto& path : clrt_test::shipped_scenes()) {
     INFO(path);
@@ -228,6 +303,33 @@ TEST_CASE("BVH images equal brute-force images at every lane count", "[opencl][b
     const Image b = render(scene, 80, 60, 3, config, Accel::None);
     CHECK(pixels_differing(a, b) == 0);
   }
+}
+
+TEST_CASE("the lanes probe picks a candidate, and the image is every candidate's", "[opencl][bvh][lanes]") {
+  const Scene scene = random_spheres(3000, 23);
+  KernelConfig config;  // lanes 0: probed where the device has blocks of lanes
+  const DeviceInfo device = clrt_test::test_device();
+  RenderSettings settings;
+  settings.kernel = config;
+  Renderer probed({device}, settings);
+  probed.prepare(scene, 64, 48, 3);
+  const Image image = probed.render();
+  const std::string chosen = probed.options();
+  const int blocks = default_lanes(config, device);
+  // the chosen program is one of the candidates'
+  const bool one_ray = chosen.find("-DCLRT_LANES=") == std::string::npos;
+  CHECK((one_ray || chosen.find("-DCLRT_LANES=" + std::to_string(blocks)) != std::string::npos));
+  for (int lanes : {1, blocks}) {
+    INFO(lanes << " lanes");
+    KernelConfig forced = config;
+    forced.lanes = lanes;
+    CHECK(pixels_differing(image, render(scene, 64, 48, 3, forced, Accel::Auto)) == 0);
+  }
+  // the same work again: the remembered choice, the same program
+  Renderer again({device}, settings);
+  again.prepare(scene, 64, 48, 3);
+  CHECK(again.options() == chosen);
+  CHECK(pixels_differing(image, again.render()) == 0);
 }
 
 TEST_CASE("the large shipped scenes: the hierarchy's image is the brute-force image",

@@ -8,6 +8,7 @@
 
 #include "clrt_layout.h"
 #include "render/build_options.hpp"
+#include "render/lane_choice.hpp"
 #include "render/kernel_features.hpp"
 #include "render/precision_support.hpp"
 #include "scene/scene_json.hpp"
@@ -334,46 +335,68 @@ TEST_CASE("lane counts: explicit, unresolved and per device", "[features][lanes]
   }
 }
 
-TEST_CASE("median_sphere_pixels: the median sphere's diameter on the image", "[specialize]") {
-  Scene s;  // camera at the origin looking down +z, viewport 1 at d = 1
-  for (double z : {10.0, 20.0, 40.0, -10.0}) {
-    Sphere sphere;
-    sphere.center = {0, 0, z};
-    sphere.radius = 1;
-    s.spheres.push_back(sphere);
-  }
-  // 2r / depth * d * W / viewport: 120, 60 and 30 px at W = 600; the sphere
-  // behind the camera does not count.
-  CHECK(median_sphere_pixels(s, 600) == Approx(60));
-  s.camera.viewport_w = 2;  // twice the view: half the size
-  CHECK(median_sphere_pixels(s, 600) == Approx(30));
-  s.spheres.resize(0);
-  CHECK(std::isinf(median_sphere_pixels(s, 600)));
-}
-
-TEST_CASE("scene_lanes: one ray per work-item for many small spheres through the hierarchy", "[specialize]") {
+TEST_CASE("lane_candidates: blocks of lanes and one ray per work-item where a hierarchy is walked", "[specialize]") {
   DeviceInfo cpu;
   cpu.type = "CPU";
   cpu.native_float_width = 16;
   KernelConfig cfg;  // specialized robust: 16 lanes on this CPU
   REQUIRE(default_lanes(cfg, cpu) == 16);
-  Scene s;
-  Sphere small;
-  small.radius = 0.01;
-  small.center = {0, 0, 10};
-  s.spheres.assign(kRayWalkMinSpheres, small);         // 0.002 W px each
-  CHECK(scene_lanes(cfg, cpu, s, 1000, true) == 1);    // 2 px
-  CHECK(scene_lanes(cfg, cpu, s, 1000, false) == 16);  // every sphere tested
-  CHECK(scene_lanes(cfg, cpu, s, 8000, true) == 16);   // 16 px
+  CHECK(lane_candidates(cfg, cpu, true) == std::vector<int>{16, 1});
+  CHECK(lane_candidates(cfg, cpu, false) == std::vector<int>{16});  // every sphere tested: blocks
   KernelConfig eight = cfg;
-  eight.lanes = 8;  // --lanes wins
-  CHECK(scene_lanes(eight, cpu, s, 1000, true) == 8);
-  s.spheres.pop_back();  // below kRayWalkMinSpheres
-  CHECK(scene_lanes(cfg, cpu, s, 1000, true) == 16);
+  eight.lanes = 8;  // --lanes wins: no probe
+  CHECK(lane_candidates(eight, cpu, true) == std::vector<int>{8});
   DeviceInfo gpu;
   gpu.type = "GPU";
-  s.spheres.push_back(small);
-  CHECK(scene_lanes(cfg, gpu, s, 1000, true) == 1);
+  CHECK(lane_candidates(cfg, gpu, true) == std::vector<int>{1});
+}
+
+TEST_CASE("probe_bands: rows spread over the image, each row at most once", "[specialize]") {
+  for (int height : {1, 3, 4, 7, 17, 64, 360, 1080, 4321}) {
+    const std::vector<RowBand> bands = probe_bands(height);
+    REQUIRE(!bands.empty());
+    int rows = 0;
+    for (size_t i = 0; i < bands.size(); ++i) {
+      CHECK(bands[i].y0 >= 0);
+      CHECK(bands[i].rows >= 1);
+      CHECK(bands[i].y0 + bands[i].rows <= height);
+      if (i > 0) CHECK(bands[i].y0 >= bands[i - 1].y0 + bands[i - 1].rows);
+      rows += bands[i].rows;
+    }
+    // about a sixteenth of the rows, never fewer than one 4-row band's worth
+    CHECK(rows >= std::min(height, 4));
+    if (height >= kProbeBands * kProbeShare * 4) CHECK(rows <= height / kProbeShare + kProbeBands);
+  }
+  CHECK(probe_bands(0).empty());
+}
+
+TEST_CASE("lane choices are remembered per key", "[specialize]") {
+  const std::string key = "test device\nno platform\n-DTEST_ONLY\n42";
+  CHECK(recall_lanes(key) == 0);
+  remember_lanes(key, 16);
+  CHECK(recall_lanes(key) == 16);
+  CHECK(recall_lanes(key + "3") == 0);
+  remember_lanes(key, 1);
+  CHECK(recall_lanes(key) == 1);
+}
+
+TEST_CASE("lane_choice_key: another scene, image size or device is another key", "[specialize]") {
+  DeviceInfo cpu;
+  cpu.name = "cpu";
+  SceneData data;
+  data.spheres.resize(3);
+  const std::string key = lane_choice_key(cpu, "-DX", data, nullptr);
+  CHECK(lane_choice_key(cpu, "-DX", data, nullptr) == key);
+  CHECK(lane_choice_key(cpu, "-DY", data, nullptr) != key);
+  SceneData moved = data;
+  moved.spheres[2].radius = 1;
+  CHECK(lane_choice_key(cpu, "-DX", moved, nullptr) != key);
+  SceneData wider = data;
+  wider.params.width = 640;
+  CHECK(lane_choice_key(cpu, "-DX", wider, nullptr) != key);
+  DeviceInfo other = cpu;
+  other.name = "gpu";
+  CHECK(lane_choice_key(other, "-DX", data, nullptr) != key);
 }
 
 }  // namespace test_kernel_features

@@ -27,7 +27,8 @@ TEST_CASE("kernel and host agree on the shared layouts", "[opencl][layout]") {
   DeviceInfo dev = clrt_test::test_device();
   cl::Context ctx(dev.device);
   cl::CommandQueue q(ctx, dev.device);
-  cl::Program prog = build_program(ctx, dev, load_kernel_source("layout_probe.cl"), "-cl-std=CL1.2");
+  cl::Program prog = build_program(ctx, dev, load_kernel_source("layout_probe.cl"),
+                                 "-cl-std=CL1.2 -DCLRT_BVH_WIDTH=" + std::to_string(CLRT_BVH_WIDTH));
   cl::Kernel k(prog, "layout_probe");
   const size_t n = std::size(kLayoutFields);
   cl::Buffer buf(ctx, CL_MEM_WRITE_ONLY, 3 * n * sizeof(cl_int));

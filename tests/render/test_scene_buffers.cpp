@@ -131,10 +131,11 @@ TEST_CASE("the host's layout field list names every struct member once", "[buffe
     bytes += f.size;
   }
   CHECK(bytes == int(sizeof(clrt_sphere) + sizeof(clrt_light) + sizeof(clrt_params) + sizeof(clrt_material) +
-                     sizeof(clrt_plane) + sizeof(clrt_triangle) + sizeof(clrt_ray_counts) + sizeof(clrt_bvh_node)));
+                     sizeof(clrt_plane) + sizeof(clrt_triangle) + sizeof(clrt_ray_counts) + sizeof(clrt_bvh_node) +
+                     sizeof(clrt_wide_node)));
   CHECK(kLayoutFields[0].offset == 0);
   CHECK(std::string(kLayoutFields[0].type) == "clrt_sphere");
-  CHECK(std::string(std::prev(std::end(kLayoutFields))->type) == "clrt_bvh_node");
+  CHECK(std::string(std::prev(std::end(kLayoutFields))->type) == "clrt_wide_node");
   CHECK(std::string(std::prev(std::end(kLayoutFields))->member) == "count");
 }
 

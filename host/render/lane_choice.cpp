@@ -1,0 +1,89 @@
+// lane_choice.cpp - the candidates, bands and memory of the lanes probe.
+#include "render/lane_choice.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <mutex>
+
+namespace clrt {
+
+std::vector<int> lane_candidates(const KernelConfig& cfg, const DeviceInfo& dev, bool bvh) {
+  if (cfg.lanes != 0) return {cfg.lanes};
+  const int lanes = default_lanes(cfg, dev);
+  if (lanes > 1 && bvh && cfg.probe_lanes) return {lanes, 1};
+  return {lanes};
+}
+
+std::vector<RowBand> probe_bands(int height) {
+  std::vector<RowBand> bands;
+  if (height <= 0) return bands;
+  const int rows = std::max(4, height / (kProbeBands * kProbeShare));
+  for (int i = 0; i < kProbeBands; ++i) {
+    // centred on the middle of the i-th quarter of the image
+    const int middle = int((2 * int64_t(i) + 1) * height / (2 * kProbeBands));
+    const int y0 = std::max(0, std::min(middle - rows / 2, height - rows));
+    const int clipped = std::min(rows, height - y0);
+    if (!bands.empty() && y0 < bands.back().y0 + bands.back().rows) continue;  // a short image: no row twice
+    bands.push_back({y0, clipped});
+  }
+  return bands;
+}
+
+namespace {
+
+// FNV-1a over 64-bit words (the bytes' tail as one more word): a key, not
+// a checksum against tampering.
+struct Hash {
+  uint64_t value = 1469598103934665603ull;
+  void add(const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    size_t i = 0;
+    for (; i + 8 <= bytes; i += 8) {
+      uint64_t word;
+      std::memcpy(&word, p + i, 8);
+      value = (value ^ word) * 1099511628211ull;
+    }
+    uint64_t tail = 0;
+    std::memcpy(&tail, p + i, bytes - i);
+    value = (value ^ tail ^ bytes) * 1099511628211ull;
+  }
+  template <class T>
+  void add(const std::vector<T>& v) {
+    add(v.data(), v.size() * sizeof(T));
+  }
+};
+
+std::mutex memory_mutex;
+std::map<std::string, int>& memory() {
+  static std::map<std::string, int> choices;
+  return choices;
+}
+
+}  // namespace
+
+std::string lane_choice_key(const DeviceInfo& dev, const std::string& options, const SceneData& data,
+                            const std::vector<clrt_wide_node>* nodes) {
+  Hash hash;
+  hash.add(&data.params, sizeof data.params);
+  hash.add(data.spheres);
+  hash.add(data.lights);
+  hash.add(data.materials);
+  hash.add(data.planes);
+  hash.add(data.triangles);
+  if (nodes) hash.add(*nodes);
+  return dev.name + "\n" + dev.platform_name + "\n" + options + "\n" + std::to_string(hash.value);
+}
+
+int recall_lanes(const std::string& key) {
+  const std::lock_guard<std::mutex> lock(memory_mutex);
+  const auto found = memory().find(key);
+  return found == memory().end() ? 0 : found->second;
+}
+
+void remember_lanes(const std::string& key, int lanes) {
+  const std::lock_guard<std::mutex> lock(memory_mutex);
+  memory()[key] = lanes;
+}
+
+}  // namespace clrt
