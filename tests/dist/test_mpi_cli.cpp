@@ -191,9 +191,11 @@ TEST_CASE("mpirun: a rank whose link stalls mid-message ends the job within the 
   // the rest of the frame's tiles meanwhile; rank 0 then ends the job after
   // the bound (3 s here), naming rank 2. Before, rank 0 sat in a blocking
   // receive of those rows: no rank got another tile, and the job never
-  // ended (`timeout` ends it here after 600 s).
+  // ended (`timeout` ends it here after 120 s, before CTest's limit, so that
+  // a hang shows its output; a machine with load 10 on 2 cores once saw
+  // mpirun wait on after its three ranks had exited).
   const RunResult job = run_command_line(
-      "timeout 600 mpirun -q --oversubscribe --allow-run-as-root --mca btl tcp,self -np 3 " +
+      "timeout 120 mpirun -q --oversubscribe --allow-run-as-root --mca btl tcp,self -np 3 " +
       clrt_test::clrt_command({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", out, "--width", "640",
                                "--height", "480", "--aspect", "image", "--mpi-test-stall", "2", "--mpi-timeout", "3"}));
   INFO(job.err);
