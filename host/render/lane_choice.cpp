@@ -45,7 +45,7 @@ struct Hash {
       value = (value ^ word) * 1099511628211ull;
     }
     uint64_t tail = 0;
-    std::memcpy(&tail, p + i, bytes - i);
+    if (bytes > i) std::memcpy(&tail, p + i, bytes - i);  // (an empty vector's data() may be null)
     value = (value ^ tail ^ bytes) * 1099511628211ull;
   }
   template <class T>
