@@ -1,7 +1,8 @@
-/* clrt_bvh.h - closest-hit and any-hit queries through the bounding volume
- * hierarchy (clrt_layout.h: clrt_wide_node, up to CLRT_BVH_WIDTH children per
- * node), built with -DCLRT_BVH in place of the loops over every primitive of
- * clrt_intersect.h. Same answers as those loops, lane by lane:
+/* clrt_bvh.h - closest-hit and any-hit queries (clrt_query.h) through the
+ * bounding volume hierarchy (clrt_layout.h: clrt_wide_node, up to
+ * CLRT_BVH_WIDTH children per node), built with -DCLRT_BVH in place of the
+ * loops over every primitive of clrt_query_all.h (nothing here exists in
+ * other builds). Same answers as those loops, lane by lane:
  *  - a child is entered when any lane's ray may meet its box inside that
  *    lane's interval; every primitive the loops would test and could win is
  *    in such a child (boxes are padded on the host beyond every rounding of
@@ -25,7 +26,9 @@
 #ifndef CLRT_BVH_H
 #define CLRT_BVH_H
 
-#include "clrt_math.h"
+#include "clrt_query_all.h"
+
+#ifdef CLRT_BVH
 
 /* Relative widening of a box's entry/exit distances: float slab arithmetic
  * is off by a few ulps (2^-22 or so); 2^-16 keeps every ray a box may hold. */
@@ -167,6 +170,33 @@ CLRT_INLINE void push_sorted(int child, real enter, int base, int* stack, real* 
   stack_enter[k] = enter;
 }
 
+/* One step of either walk: tests node `index`'s children against the lanes
+ * of `active` and pushes those hit, nearest on top, each with its entry
+ * distance. Inner children are pushed as their node index, leaves as
+ * ~(index * CLRT_BVH_WIDTH + slot): their entries are read only when popped
+ * (leaf_entries()), and a leaf popped beyond the closest hit is never read. */
+CLRT_INLINE void push_children(__global const clrt_wide_node* nodes, int index, const vec3* O, const vec3* inverse,
+                               real tmin, lreal limit, lint active, int* stack, real* stack_enter, int* top) {
+  __global const clrt_wide_node* node = &nodes[index];
+  real enter[CLRT_BVH_WIDTH];
+  int hit[CLRT_BVH_WIDTH];
+  node_children(node, O, inverse, tmin, limit, active, enter, hit);
+  const int base = *top;
+  for (int k = 0; k < CLRT_BVH_WIDTH; ++k)
+    if (hit[k])
+      push_sorted(node->count[k] > 0 ? ~(index * CLRT_BVH_WIDTH + k) : node->child[k], enter[k], base, stack,
+                  stack_enter, top);
+}
+
+/* The primitive entries [*first, *first + *count) of the leaf that stack
+ * entry `reference` (~(node * CLRT_BVH_WIDTH + slot), negative) stands for. */
+CLRT_INLINE void leaf_entries(__global const clrt_wide_node* nodes, int reference, int* first, int* count) {
+  const int slot = ~reference;
+  __global const clrt_wide_node* parent = &nodes[slot / CLRT_BVH_WIDTH];
+  *first = parent->child[slot % CLRT_BVH_WIDTH];
+  *count = parent->count[slot % CLRT_BVH_WIDTH];
+}
+
 /* The distances to leaf entry `entry` (a sphere's two roots, or a triangle's
  * distance twice); returns the primitive's id. A ray never meets the
  * triangle it starts on again (its id is `self`). */
@@ -215,6 +245,20 @@ CLRT_INLINE void closest_in_leaf(int first, int count, const vec3* O, const vec3
   }
 }
 
+/* The lanes whose ray meets a primitive entry of leaf child [first, first +
+ * count) in (tmin, tmax). */
+CLRT_INLINE lint any_in_leaf(int first, int count, const vec3* O, const vec3* D SHEAR_ARG, real tmin, real tmax,
+                             lint self, const scene_data* scene, lint* tests) {
+  __global const int* primitives = scene->primitives;
+  lint blocked = 0;
+  for (int k = first; k < first + count; ++k) {
+    lreal t1, t2;
+    entry_roots(primitives[k], O, D SHEAR_PASS_PTR, self, scene, &t1, &t2, tests);
+    blocked |= ((tmin < t1) & (t1 < tmax)) | ((tmin < t2) & (t2 < tmax));
+  }
+  return blocked;
+}
+
 /* Closest hit in (tmin, tmax) per lane: the primitive id or -1. */
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
                                       const scene_data* scene, lreal* t_out, lint* tests) {
@@ -234,17 +278,7 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
   real stack_enter[CLRT_BVH_STACK];
   int top = 0, index = 0;
   for (;;) {
-    __global const clrt_wide_node* node = &nodes[index];
-    real enter[CLRT_BVH_WIDTH];
-    int hit[CLRT_BVH_WIDTH];
-    node_children(node, O, &inverse, tmin, BMIN(closest, (lreal)tmax), MASK_TRUE, enter, hit);
-    /* every hit child, nearest on top: inner ones by their index, leaves as
-     * ~(node * CLRT_BVH_WIDTH + slot) (their entries are read when popped) */
-    const int base = top;
-    for (int k = 0; k < CLRT_BVH_WIDTH; ++k)
-      if (hit[k])
-        push_sorted(node->count[k] > 0 ? ~(index * CLRT_BVH_WIDTH + k) : node->child[k], enter[k], base, stack,
-                    stack_enter, &top);
+    push_children(nodes, index, O, &inverse, tmin, BMIN(closest, (lreal)tmax), MASK_TRUE, stack, stack_enter, &top);
     /* the nearest child still worth a visit (beyond every lane's closest
      * hit, none is): leaves are tested on the way to it */
     index = -1;
@@ -255,11 +289,9 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
         index = stack[top];
         break;
       }
-      const int slot = ~stack[top];
-      __global const clrt_wide_node* parent = &nodes[slot / CLRT_BVH_WIDTH];
-      const int k = slot % CLRT_BVH_WIDTH;
-      closest_in_leaf(parent->child[k], parent->count[k], O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best,
-                      tests);
+      int first, count;
+      leaf_entries(nodes, stack[top], &first, &count);
+      closest_in_leaf(first, count, O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best, tests);
     }
     if (index < 0) break;
   }
@@ -272,7 +304,6 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
 CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
                                   const scene_data* scene, lint* tests) {
   __global const clrt_wide_node* nodes = scene->nodes;
-  __global const int* primitives = scene->primitives;
   const vec3 inverse = inverse_direction(D);
   lint blocked = 0;
 #if CLRT_HAS_PLANES
@@ -287,17 +318,9 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
   for (;;) {
     const lint open = active & !blocked;
     if (!ANY(open)) break;
-    __global const clrt_wide_node* node = &nodes[index];
-    real enter[CLRT_BVH_WIDTH];
-    int hit[CLRT_BVH_WIDTH];
-    node_children(node, O, &inverse, tmin, (lreal)tmax, open, enter, hit);
     /* nearest first, as the closest-hit walk: a blocker near the surface
      * (the usual one) is found before the far subtrees are walked */
-    const int base = top;
-    for (int k = 0; k < CLRT_BVH_WIDTH; ++k)
-      if (hit[k])
-        push_sorted(node->count[k] > 0 ? ~(index * CLRT_BVH_WIDTH + k) : node->child[k], enter[k], base, stack,
-                    stack_enter, &top);
+    push_children(nodes, index, O, &inverse, tmin, (lreal)tmax, open, stack, stack_enter, &top);
     index = -1;
     while (top > 0) {
       --top;
@@ -305,19 +328,16 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
         index = stack[top];
         break;
       }
-      const int slot = ~stack[top];
-      __global const clrt_wide_node* parent = &nodes[slot / CLRT_BVH_WIDTH];
-      const int k = slot % CLRT_BVH_WIDTH;
-      for (int e = parent->child[k]; e < parent->child[k] + parent->count[k]; ++e) {
-        lreal t1, t2;
-        entry_roots(primitives[e], O, D SHEAR_PASS, self, scene, &t1, &t2, tests);
-        blocked |= ((tmin < t1) & (t1 < tmax)) | ((tmin < t2) & (t2 < tmax));
-      }
+      int first, count;
+      leaf_entries(nodes, stack[top], &first, &count);
+      blocked |= any_in_leaf(first, count, O, D SHEAR_PASS, tmin, tmax, self, scene, tests);
       if (ALL(blocked | !active)) return blocked;
     }
     if (index < 0) break;
   }
   return blocked;
 }
+
+#endif /* CLRT_BVH */
 
 #endif /* CLRT_BVH_H */

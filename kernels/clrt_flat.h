@@ -1,43 +1,13 @@
 /* clrt_flat.h - chapter 5's flat primitives: infinite planes and triangles
- * (inline or from OBJ meshes), their ray tests, and the scene's buffers as
- * one struct that every query takes.
+ * (inline or from OBJ meshes) and their ray tests, one primitive at a time.
  *
- * A hit is one id over all primitives (clrt_layout.h): spheres 0..S-1,
- * planes S..S+P-1, triangles S+P... A ray leaving a flat primitive cannot
- * meet it again, so its own id (`self`) is skipped outright; spheres keep
- * their self roots (clrt_intersect.h). */
+ * A ray leaving a flat primitive cannot meet it again, so the queries skip
+ * its own id (`self`) outright (clrt_query_all.h, clrt_bvh.h); spheres keep
+ * their self roots (clrt_sphere.h). */
 #ifndef CLRT_FLAT_H
 #define CLRT_FLAT_H
 
-#include "clrt_math.h"
-
-/* The buffers of the scene, in one place. */
-typedef struct scene_data {
-  __global const clrt_params* params;
-  __global const clrt_sphere* spheres;
-  __global const clrt_light* lights;
-  __global const clrt_wide_node* nodes;
-  __global const int* primitives;
-  __global const clrt_plane* planes;
-  __global const clrt_triangle* triangles;
-  __global const clrt_material* materials;
-} scene_data;
-
-/* Counts of the flat primitives: constants 0 where the build leaves a kind
- * out (CLRT_HAS_PLANES / CLRT_HAS_TRIANGLES 0), so their loops vanish. */
-#if CLRT_HAS_PLANES
-#define CLRT_PLANE_COUNT(params) ((params)->n_planes)
-#else
-#define CLRT_PLANE_COUNT(params) 0
-#endif
-#if CLRT_HAS_TRIANGLES
-#define CLRT_TRIANGLE_COUNT(params) ((params)->n_triangles)
-#else
-#define CLRT_TRIANGLE_COUNT(params) 0
-#endif
-/* The first id of each flat kind. */
-#define PLANE_ID0(params) CLRT_SPHERE_COUNT(params)
-#define TRIANGLE_ID0(params) (CLRT_SPHERE_COUNT(params) + CLRT_PLANE_COUNT(params))
+#include "clrt_scene.h"
 
 /* Distance along D to plane `p` (dot(n, P0 - O) / dot(n, D)), per lane;
  * infinity for a ray parallel to it. */
@@ -113,57 +83,5 @@ CLRT_INLINE lreal triangle_distance(const vec3* O, const ray_shear* s, __global 
   return (outside | (det == 0)) ? (lreal)REAL_INFINITY : t;
 }
 #endif
-
-/* Closest plane or triangle hit in (tmin, tmax), folded into *closest and
- * *best (ties to the lower id), for the loops over every primitive. With
- * the hierarchy only the planes come here (triangles are in its leaves). */
-CLRT_INLINE void closest_flat(const vec3* O, const vec3* D, real tmin, real tmax, lint self, const scene_data* scene,
-                              int with_triangles, lreal* closest, lint* best, lint* tests) {
-  __global const clrt_params* params = scene->params;
-  for (int k = 0; k < CLRT_PLANE_COUNT(params); ++k) {
-    const int id = PLANE_ID0(params) + k;
-    const lreal t = plane_distance(O, D, &scene->planes[k]);
-    const lint nearer = (t < *closest) & (tmin < t) & (t < tmax) & (self != id);
-    *closest = nearer ? t : *closest;
-    *best = nearer ? (lint)id : *best;
-  }
-  *tests += (lint)CLRT_PLANE_COUNT(params);
-#if CLRT_HAS_TRIANGLES
-  if (!with_triangles) return;
-  const ray_shear shear = shear_of(D);
-  for (int k = 0; k < CLRT_TRIANGLE_COUNT(params); ++k) {
-    const int id = TRIANGLE_ID0(params) + k;
-    const lreal t = triangle_distance(O, &shear, &scene->triangles[k]);
-    const lint nearer = (t < *closest) & (tmin < t) & (t < tmax) & (self != id);
-    *closest = nearer ? t : *closest;
-    *best = nearer ? (lint)id : *best;
-  }
-  *tests += (lint)CLRT_TRIANGLE_COUNT(params);
-#endif
-}
-
-/* Whether a plane or triangle blocks (tmin, tmax), per lane (for the lanes
- * of `active`; stops early when all are blocked). */
-CLRT_INLINE lint any_flat(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
-                          const scene_data* scene, int with_triangles, lint* tests) {
-  __global const clrt_params* params = scene->params;
-  lint blocked = 0;
-  for (int k = 0; k < CLRT_PLANE_COUNT(params); ++k) {
-    const lreal t = plane_distance(O, D, &scene->planes[k]);
-    blocked |= (tmin < t) & (t < tmax) & (self != PLANE_ID0(params) + k);
-  }
-  *tests += (lint)CLRT_PLANE_COUNT(params);
-#if CLRT_HAS_TRIANGLES
-  if (!with_triangles) return blocked;
-  const ray_shear shear = shear_of(D);
-  *tests += (lint)CLRT_TRIANGLE_COUNT(params);
-  for (int k = 0; k < CLRT_TRIANGLE_COUNT(params); ++k) {
-    if (ALL(blocked | !active)) break;
-    const lreal t = triangle_distance(O, &shear, &scene->triangles[k]);
-    blocked |= (tmin < t) & (t < tmax) & (self != TRIANGLE_ID0(params) + k);
-  }
-#endif
-  return blocked;
-}
 
 #endif /* CLRT_FLAT_H */

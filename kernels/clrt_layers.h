@@ -12,6 +12,8 @@
 #ifndef CLRT_LAYERS_H
 #define CLRT_LAYERS_H
 
+#include "clrt_block.h"
+#include "clrt_camera.h"
 #include "clrt_shade.h"
 
 #ifdef CLRT_OUT_LAYERS
@@ -66,6 +68,23 @@ CLRT_INLINE void layer_values(const first_hit_layers* layers, float values[CLRT_
   STORE_LAYER(values[CLRT_LAYER_ALBEDO + 1], LAYER_FLOAT(layers->albedo.y));
   STORE_LAYER(values[CLRT_LAYER_ALBEDO + 2], LAYER_FLOAT(layers->albedo.z));
   STORE_LAYER(values[CLRT_LAYER_ID], LAYER_ID_BITS(layers->id));
+}
+
+/* The layers of each lane's pixel (x, y): its centre's camera ray. */
+CLRT_INLINE void pixel_layers(const camera_view* view, const lint x, const lint y, const scene_data* scene,
+                              float values[CLRT_LAYER_FLOATS][CLRT_LANES]) {
+  const first_hit_layers first = first_hit(view->origin, canvas_direction(view, TO_LREAL(x), TO_LREAL(y)), scene);
+  layer_values(&first, values);
+}
+
+/* values[k][j] to float k of lane j's pixel, for the lanes in the tile. */
+CLRT_INLINE void store_layers(const pixel_block* block, float values[CLRT_LAYER_FLOATS][CLRT_LANES],
+                              __global float* layers) {
+  for (int j = 0; j < CLRT_LANES; ++j) {
+    if (!lane_in_tile(block, j)) continue;
+    const int idx = lane_tile_y(block, j) * block->tile_w + lane_tile_x(block, j);
+    for (int k = 0; k < CLRT_LAYER_FLOATS; ++k) layers[idx * CLRT_LAYER_FLOATS + k] = values[k][j];
+  }
 }
 #endif
 

@@ -3,7 +3,7 @@
 #ifndef CLRT_SHADE_H
 #define CLRT_SHADE_H
 
-#include "clrt_intersect.h"
+#include "clrt_query.h"
 
 /* 2 (N.R) N - R */
 #define reflect_ray(R, N) vsub(vscale(2 * vdot((N), (R)), (N)), (R))

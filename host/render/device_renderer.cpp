@@ -8,6 +8,7 @@
 
 #include "cl/kernel_source.hpp"
 #include "cl/program.hpp"
+#include "render/kernel_args.hpp"
 #include "render/lane_choice.hpp"
 #include "render/scene_buffers.hpp"
 #include "util/error.hpp"
@@ -90,6 +91,14 @@ void DeviceRenderer::use_program(const std::string& opts) {
   BuiltProgram built;
   built.program = build_program(context_, device_, source_, opts, &bs, BuildFlags{config_.use_cache, config_.verbose});
   built.kernel = cl::Kernel(built.program, "render");
+  // The kernel's parameters and the host's RenderArg come from one list
+  // (kernels/clrt_kernel_args.h); a kernel file from elsewhere (--kernel-dir)
+  // may not follow it.
+  const cl_uint arguments = built.kernel.getInfo<CL_KERNEL_NUM_ARGS>();
+  if (arguments != render_arg_count(config_.output.layers))
+    throw UserError("the render kernel takes " + std::to_string(arguments) + " arguments, this clrt passes " +
+                    std::to_string(render_arg_count(config_.output.layers)) +
+                    " (kernels/clrt_kernel_args.h; a --kernel-dir from another version?)");
   // Default local size: (preferred multiple, 1), within the kernel's limit.
   const size_t pm = built.kernel.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device_.device);
   built.max_work_group = built.kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_.device);
@@ -225,22 +234,23 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   next_slot_ = (next_slot_ + 1) % 2;
   ResultSlot& slot = slots_[tile.slot];  // free: its last tile was finished
   ensure_slot(slot, n);
-  built_.kernel.setArg(0, params_);
-  built_.kernel.setArg(1, spheres_);
-  built_.kernel.setArg(2, lights_);
-  built_.kernel.setArg(3, slot.colors);
-  built_.kernel.setArg(4, slot.classes);
-  built_.kernel.setArg(5, slot.counters);
-  built_.kernel.setArg(6, cl_int(x0));
-  built_.kernel.setArg(7, cl_int(y0));
-  built_.kernel.setArg(8, cl_int(w));
-  built_.kernel.setArg(9, cl_int(h));
-  built_.kernel.setArg(10, nodes_);
-  built_.kernel.setArg(11, primitives_);
-  built_.kernel.setArg(12, planes_);
-  built_.kernel.setArg(13, triangles_);
-  built_.kernel.setArg(14, materials_);
-  if (config_.output.layers) built_.kernel.setArg(16, slot.layers);  // (an argument of layer builds only)
+  cl::Kernel& kernel = built_.kernel;
+  set_arg<RenderArg::params>(kernel, params_);
+  set_arg<RenderArg::spheres>(kernel, spheres_);
+  set_arg<RenderArg::lights>(kernel, lights_);
+  set_arg<RenderArg::colors>(kernel, slot.colors);
+  set_arg<RenderArg::classes>(kernel, slot.classes);
+  set_arg<RenderArg::counters>(kernel, slot.counters);
+  set_arg<RenderArg::x0>(kernel, cl_int(x0));
+  set_arg<RenderArg::y0>(kernel, cl_int(y0));
+  set_arg<RenderArg::tile_w>(kernel, cl_int(w));
+  set_arg<RenderArg::tile_h>(kernel, cl_int(h));
+  set_arg<RenderArg::nodes>(kernel, nodes_);
+  set_arg<RenderArg::primitives>(kernel, primitives_);
+  set_arg<RenderArg::planes>(kernel, planes_);
+  set_arg<RenderArg::triangles>(kernel, triangles_);
+  set_arg<RenderArg::materials>(kernel, materials_);
+  if (config_.output.layers) set_arg<RenderArg::layers>(kernel, slot.layers);  // (an argument of layer builds only)
   // Each work-item shades a block of kernel_lanes(config_) pixels,
   // packet_rows(config_) of them high. With subsampling a tile is two
   // launches (kernels/trace.cl): the ones that take every other column
@@ -265,14 +275,14 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   };
   const size_t every_other = (size_t(w) + 1) / 2;
   const Subsample mode = config_.subsample;
-  built_.kernel.setArg(15, cl_int(0));
-  tile.launch = start_timed(queue_, built_.kernel, global_for(mode == Subsample::Off ? size_t(w) : every_other), local);
+  set_arg<RenderArg::pass>(kernel, cl_int(0));
+  tile.launch = start_timed(queue_, kernel, global_for(mode == Subsample::Off ? size_t(w) : every_other), local);
   if (mode != Subsample::Off) {
     // Pass 1 after pass 0 (an in-order queue): timed as one launch, from
     // the first's start to the second's end. Shade's pass 1 shades every
     // column, interpolate's the odd ones.
-    built_.kernel.setArg(15, cl_int(1));
-    tile.launch = start_timed_after(tile.launch, queue_, built_.kernel,
+    set_arg<RenderArg::pass>(kernel, cl_int(1));
+    tile.launch = start_timed_after(tile.launch, queue_, kernel,
                                     global_for(mode == Subsample::Shade ? size_t(w) : every_other), local);
   }
 

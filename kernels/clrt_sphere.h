@@ -1,9 +1,9 @@
-/* clrt_intersect.h - ray-sphere intersection per precision variant, and the
- * closest-hit and any-hit queries over the scene's spheres. */
-#ifndef CLRT_INTERSECT_H
-#define CLRT_INTERSECT_H
+/* clrt_sphere.h - the ray-sphere test of each precision variant: both roots
+ * of |O + tD - C|^2 = r^2 for one sphere, with the self roots of a ray that
+ * starts on it. The scene-wide queries that call it are clrt_query.h's. */
+#ifndef CLRT_SPHERE_H
+#define CLRT_SPHERE_H
 
-#include "clrt_flat.h"
 #include "clrt_math.h"
 
 #if CLRT_PRECISION != CLRT_PRECISION_NAIVE && CLRT_PRECISION != CLRT_PRECISION_FP64
@@ -136,120 +136,4 @@ CLRT_INLINE void intersect(const vec3* Op, const vec3* Dp, __global const clrt_s
 #endif
 }
 
-#ifdef CLRT_BVH
-#include "clrt_bvh.h"
-#else
-/* The queries below test every primitive; with -DCLRT_BVH clrt_bvh.h gives
- * the same answers through the hierarchy (scene->nodes, scene->primitives,
- * unused here). `tests` counts the primitive tests per lane. */
-
-/* Closest hit in (tmin, tmax) per lane; the primitive id or -1. */
-CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
-                                      const scene_data* scene, lreal* t_out, lint* tests) {
-  __global const clrt_params* params = scene->params;
-  *tests += (lint)CLRT_SPHERE_COUNT(params);
-  lreal closest = REAL_INFINITY;
-  lint best = -1;
-  CLRT_UNROLL for (int i = 0; i < CLRT_SPHERE_COUNT(params); ++i) {
-    lreal t1, t2;
-    intersect(O, D, scene->spheres, i, self == i, &t1, &t2);
-    lint nearer = (t1 < closest) & (tmin < t1) & (t1 < tmax);
-    closest = nearer ? t1 : closest;
-    best = nearer ? (lint)i : best;
-    nearer = (t2 < closest) & (tmin < t2) & (t2 < tmax);
-    closest = nearer ? t2 : closest;
-    best = nearer ? (lint)i : best;
-  }
-#if CLRT_HAS_PLANES || CLRT_HAS_TRIANGLES
-  closest_flat(O, D, tmin, tmax, self, scene, 1, &closest, &best, tests);
-#endif
-  *t_out = closest;
-  return best;
-}
-
-/* Any hit in (tmin, tmax) per lane: the book asks ClosestIntersection for a
- * blocker, but only whether one exists matters, so testing stops as soon as
- * every lane that needs the answer (`active`) has found one. */
-CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
-                                  const scene_data* scene, lint* tests) {
-  __global const clrt_params* params = scene->params;
-  /* counted as every sphere, like the first bounce of the book's loop */
-  *tests += (lint)CLRT_SPHERE_COUNT(params);
-  lint blocked = 0;
-  for (int i = 0; i < CLRT_SPHERE_COUNT(params); ++i) {
-#ifndef CLRT_SHADOW_ALL_SPHERES /* (measurement knob: no early exit) */
-    if (ALL(blocked | !active)) break;
-#endif
-    lreal t1, t2;
-    intersect(O, D, scene->spheres, i, self == i, &t1, &t2);
-    blocked |= ((tmin < t1) & (t1 < tmax)) | ((tmin < t2) & (t2 < tmax));
-  }
-#if CLRT_HAS_PLANES || CLRT_HAS_TRIANGLES
-  if (!ALL(blocked | !active)) blocked |= any_flat(O, D, tmin, tmax, self, active & !blocked, scene, 1, tests);
-#endif
-  return blocked;
-}
-#endif /* CLRT_BVH */
-
-/* No assumed primary hit: the search decides (see below). */
-#define ASSUME_NOTHING (-2)
-
-#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
-/* Subsampling, shade mode (host/scene/sampling.hpp): a camera ray whose pixel's
- * neighbours hit the same primitive is tested against that primitive only.
- * `assumed` per lane: a primitive id, -1 (both neighbours missed: no hit,
- * no test) or ASSUME_NOTHING. Returns the hit per lane of `alive`, or
- * ASSUME_NOTHING where the closest_intersection() search must decide (no
- * assumption, or the ray passes the assumed primitive by). Lanes that
- * assume the same primitive test it together; the loop runs once per
- * distinct id among the lanes (mostly once: the block's pixels are
- * neighbours). */
-/* The closest hit in (tmin, infinity) on primitive `id` (uniform), per lane;
- * infinity on a miss. */
-CLRT_INLINE lreal primitive_distance(const vec3* O, const vec3* D, real tmin, int id, const scene_data* scene) {
-  __global const clrt_params* params = scene->params;
-  lreal t = REAL_INFINITY;
-  if (id < CLRT_SPHERE_COUNT(params)) {
-    lreal t1, t2;
-    intersect(O, D, scene->spheres, id, (lint)0, &t1, &t2);
-    t = ((tmin < t1) & (t1 < t)) ? t1 : t; /* both roots, as closest_intersection() takes them */
-    t = ((tmin < t2) & (t2 < t)) ? t2 : t;
-    return t;
-  }
-#if CLRT_HAS_PLANES
-  if (id < TRIANGLE_ID0(params)) {
-    const lreal d = plane_distance(O, D, &scene->planes[id - PLANE_ID0(params)]);
-    return ((tmin < d) & (d < t)) ? d : t;
-  }
-#endif
-#if CLRT_HAS_TRIANGLES
-  {
-    const ray_shear shear = shear_of(D);
-    const lreal d = triangle_distance(O, &shear, &scene->triangles[id - TRIANGLE_ID0(params)]);
-    t = ((tmin < d) & (d < t)) ? d : t;
-  }
-#endif
-  return t;
-}
-
-CLRT_INLINE lint assumed_intersection(const vec3* O, const vec3* D, real tmin, lint assumed, lint alive,
-                                      const scene_data* scene, lreal* t_out, lint* tests) {
-  lint hit = (alive & (assumed == (lint)-1)) ? (lint)-1 : (lint)ASSUME_NOTHING;
-  lreal t = REAL_INFINITY;
-  lint todo = alive & (assumed >= (lint)0);
-  while (ANY(todo)) {
-    const int id = LANE_MIN(todo ? assumed : (lint)INT_MAX);
-    const lint these = todo & (assumed == (lint)id);
-    const lreal d = primitive_distance(O, D, tmin, id, scene);
-    const lint found = these & (d < REAL_INFINITY);
-    hit = found ? (lint)id : hit;
-    t = found ? d : t;
-    *tests += these ? (lint)1 : (lint)0;
-    todo &= !these;
-  }
-  *t_out = t;
-  return hit;
-}
-#endif
-
-#endif /* CLRT_INTERSECT_H */
+#endif /* CLRT_SPHERE_H */
