@@ -22,7 +22,7 @@
  *   CLRT_COMPENSATED_FLAGS  with the counts, when the spheres differ: each
  *                        sphere's clrt_sphere.compensated, "0,0,0,1"; with
  *                        neither, each sphere's flag decides at run time
- *                        (clrt_intersect.h)
+ *                        (clrt_sphere.h)
  *   CLRT_BVH             walk the hierarchy (clrt_bvh.h) instead of testing
  *                        every sphere (the host's Accel, render/bvh.hpp)
  *   CLRT_COUNT_RAYS      write per-pixel ray counters
@@ -30,12 +30,13 @@
  *                        RGB (clrt_lanes.h: TO_CANVAS)
  *   CLRT_OUT_CLASSES     store each pixel's hit sphere and shadow mask
  *   CLRT_OUT_LAYERS      store each pixel's AOV layers (clrt_layers.h; an
- *                        extra kernel argument, the layers buffer)
+ *                        extra kernel argument, the layers buffer:
+ *                        clrt_kernel_args.h)
  *   CLRT_SUBSAMPLE       the book's subsampling (host/scene/sampling.hpp):
  *                        0 off (default), CLRT_SUBSAMPLE_SHADE or
  *                        CLRT_SUBSAMPLE_INTERPOLATE; a frame is two launches
  *                        per tile, the kernel's `pass` argument picks the
- *                        even or odd columns (trace.cl)
+ *                        even or odd columns (clrt_subsample.h)
  *   CLRT_LANES           pixels per work-item: 1 (when absent), 4, 8 or 16;
  *                        the host picks it (default_lanes(), build_options.hpp)
  *   CLRT_PACKET_ROWS     rows of the work-item's block of pixels (1 when
@@ -75,7 +76,7 @@
 #endif
 /* The recursion depth is a constant where the host compiles it in
  * (CLRT_DEPTH); otherwise it is read at run time, bounded by the slots of
- * the pending rays (trace.cl): CLRT_DEPTH_BOUND where the host gives one
+ * the pending rays (clrt_ray_tree.h): CLRT_DEPTH_BOUND where the host gives one
  * (one program then serves every depth up to it), else CLRT_MAX_DEPTH. */
 #if defined(CLRT_SPECIALIZED) && defined(CLRT_DEPTH)
 #define CLRT_RECURSION_DEPTH(params) CLRT_DEPTH

@@ -1,7 +1,7 @@
 /* clrt_lanes.h - the scalar type of a precision variant (`real`) and the SIMD
  * lane types built from it.
  *
- * A work-item shades a block of CLRT_LANES pixels (trace.cl), one per lane of
+ * A work-item shades a block of CLRT_LANES pixels (clrt_block.h), one per lane of
  * `lreal`: float16/float8/float4 in specialized float builds (the host picks
  * 16 on AVX-512 CPUs, 8 on other CPUs, 1 on GPUs: default_lanes() in
  * host/render/build_options.hpp), a plain scalar (1 lane) in generic and fp64

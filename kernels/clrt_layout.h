@@ -1,5 +1,6 @@
 /* clrt_layout.h - data layouts and codes shared by the host (C++17) and the
- * kernel (OpenCL C 1.2). This is the ONLY file compiled by both sides; it
+ * kernel (OpenCL C 1.2). With clrt_kernel_args.h (the render kernel's
+ * argument list) it is one of the two files compiled by both sides; it
  * holds plain data, no shading logic. Every member is a 32-bit scalar so that
  * the layout is identical on both sides without alignment pragmas; the host
  * static_asserts that CLRT_LAYOUT_FIELDS covers every byte of every struct

@@ -167,7 +167,7 @@ CLRT_INLINE vec3 refract_ray(const vec3 D, const vec3 N, const lreal n1, const h
  * with normal N, seen along V (= -D), for the lanes of `alive`: ambient
  * light, plus diffuse and specular terms of every point and directional
  * light that no sphere blocks (a shadow ray from Pt). Where `classify` is
- * set (the primary ray of a pixel's first sample, trace.cl) the lights
+ * set (the primary ray of a pixel's first sample, clrt_ray_tree.h) the lights
  * blocked in a lane set its bits of *shadow_mask (the first 32 lights). */
 CLRT_INLINE lreal compute_lighting(const vec3* point, const vec3* normal, const vec3* view, lreal specular, lint hit,
                                    lint alive, real epsilon, int classify, const scene_data* scene, lint* shadow_mask,

@@ -19,7 +19,7 @@ namespace clrt {
 // s = j * N + i, and its colour is the mean of the N^2 colours (unclamped,
 // before the canvas rule); its hit/shadow classification is sample 0's, at
 // (x + o_0, y + o_0). N = 1 is the book's one ray through (x, y), bit for
-// bit. The kernel states the same rule (kernels/trace.cl); the tests check
+// bit. The kernel states the same rule (kernels/clrt_samples.h); the tests check
 // that the two agree.
 //
 // Transparency and refraction (chapter 5; Sphere::transparency,

@@ -123,7 +123,7 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
     options.push_back(define("CLRT_BVH_WIDTH", CLRT_BVH_WIDTH));  // the host's clrt_wide_node
   }
   if (cfg.specialize) add_specialization(features, options);
-  // The tree walk's pending rays take a slot per level (trace.cl): a scene
+  // The tree walk's pending rays take a slot per level (clrt_ray_tree.h): a scene
   // that refracts gets as many as its depth class needs, not CLRT_MAX_DEPTH
   // (65 slots of 40 bytes per lane; 16 lanes would take 41 KiB per
   // work-item). Depths share a program within a class (a sweep over 0-10

@@ -57,7 +57,7 @@ int packet_rows(const KernelConfig& cfg);
 // generic and fp64 builds are scalar (1). Why: docs/developer/kernel.md.
 int default_lanes(const KernelConfig& cfg, const DeviceInfo& dev);
 
-// The slots of the tree walk's pending rays (trace.cl) for a scene that
+// The slots of the tree walk's pending rays (clrt_ray_tree.h) for a scene that
 // refracts at recursion depth `depth`: the smallest of 4, 8, 16, 32, 64 that
 // is >= depth (-DCLRT_DEPTH_BOUND; one program per class of depths).
 int pending_depth_bound(int depth);

@@ -253,7 +253,7 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   if (config_.output.layers) set_arg<RenderArg::layers>(kernel, slot.layers);  // (an argument of layer builds only)
   // Each work-item shades a block of kernel_lanes(config_) pixels,
   // packet_rows(config_) of them high. With subsampling a tile is two
-  // launches (kernels/trace.cl): the ones that take every other column
+  // launches (kernels/clrt_subsample.h): the ones that take every other column
   // cover at most (w + 1) / 2 columns.
   const size_t rows = size_t(packet_rows(config_)), cols = size_t(kernel_lanes(config_)) / rows;
   // Always an explicit local size: with NullRange the implementation picks

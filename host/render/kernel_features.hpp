@@ -53,7 +53,7 @@ struct KernelFeatures {
   bool has_flat() const { return plane_count > 0 || triangle_count > 0; }
   // Reflection rays are traced only when something reflects and depth > 0.
   bool traces_reflections() const { return has_reflective && depth > 0; }
-  // Refracted rays (and the pending children of the tree walk, trace.cl)
+  // Refracted rays (and the pending children of the tree walk, clrt_ray_tree.h)
   // only when something is transparent and depth > 0.
   bool traces_refractions() const { return has_transparent && depth > 0; }
 

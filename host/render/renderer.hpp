@@ -63,7 +63,7 @@ class Renderer {
   Renderer(const std::vector<DeviceInfo>& devices, const RenderSettings& settings);
 
   // Builds every device's program (in parallel) and uploads the scene. spp:
-  // N x N samples per pixel (supersampling, kernels/trace.cl), a run-time
+  // N x N samples per pixel (supersampling, kernels/clrt_samples.h), a run-time
   // value like the depth: another spp rebuilds nothing.
   void prepare(const Scene& scene, int width, int height, int depth, Sampling sampling = {});
   // Renders the prepared scene: the whole frame, shared by every device.

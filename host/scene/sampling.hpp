@@ -1,8 +1,8 @@
 // sampling.hpp - how a pixel is sampled: N x N supersampling (--spp), the
 // book's adaptive variant (--adaptive T) and its subsampling (--subsample).
 // A render setting, like the image size: the scene format has no field for
-// it. The rules, stated in both engines (reference/reference.hpp,
-// kernels/trace.cl), are in docs/reference/semantics.md.
+// it. The rules, stated in both engines (reference/reference.hpp;
+// kernels/clrt_samples.h, clrt_subsample.h), are in docs/reference/semantics.md.
 #pragma once
 #include <string>
 

@@ -1,5 +1,5 @@
 // test_refraction.cpp - chapter 5's transparency and refraction in the kernel
-// (the tree walk of kernels/trace.cl) against the reference (reference.hpp)
+// (the tree walk of kernels/clrt_ray_tree.h) against the reference (reference.hpp)
 // and against images and counts derived by hand: Snell's law at the critical
 // angle, the medium around the camera, index 1 as plain transparency, the
 // media of nested spheres, the pending-ray slots, and the ray counters.

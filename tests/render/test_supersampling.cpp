@@ -1,5 +1,5 @@
 // test_supersampling.cpp - the kernel's supersampling (--spp N, N x N samples
-// per pixel, kernels/trace.cl) against the reference's (reference.hpp): the
+// per pixel, kernels/clrt_samples.h) against the reference's (reference.hpp): the
 // same sample rule, the same images within the compare tolerance, spp 1 the
 // single-ray render, one program for every N, and rays counted per sample.
 #include <algorithm>
