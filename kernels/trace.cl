@@ -18,9 +18,11 @@
  *   clrt_bvh.h        the same queries through the hierarchy (-DCLRT_BVH)
  *   clrt_shade.h      hit material, ComputeLighting, reflected rays
  *   clrt_layers.h     the AOV layers' first hit (-DCLRT_OUT_LAYERS)
+ *   clrt_device_status.h  checks of a work-item's own run (the status word)
  * This file holds the camera rays (N x N per pixel with supersampling), the
  * walk over the rays they spawn, the average and the stores. */
 #include "clrt_config.h"
+#include "clrt_device_status.h"
 #include "clrt_flat.h"
 #include "clrt_intersect.h"
 #include "clrt_lanes.h"
@@ -207,7 +209,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
                      __global clrt_ray_counts* ray_counts, const int x0, const int y0, const int tile_w,
                      const int tile_h, __global const clrt_wide_node* nodes, __global const int* primitives,
                      __global const clrt_plane* planes, __global const clrt_triangle* triangles,
-                     __global const clrt_material* materials, const int pass
+                     __global const clrt_material* materials, const int pass, __global int* status
 #ifdef CLRT_OUT_LAYERS
                      , __global float* layers /* CLRT_LAYER_FLOATS per pixel (clrt_layers.h) */
 #endif
@@ -296,6 +298,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
       ray_counts[jy * tile_w + jx].sphere_tests = searched[j]; /* pass 1 adds its own */
 #endif
     }
+    CHECK_LOOP_LIMIT(params, status);
     return;
   }
 #endif
@@ -518,6 +521,7 @@ __kernel void render(__global const clrt_params* params, __global const clrt_sph
     ray_counts[idx].refraction = refraction[j];
 #endif
   }
+  CHECK_LOOP_LIMIT(params, status);
 }
 #if CLRT_SUBSAMPLE
 #undef LANE_TILE_X
