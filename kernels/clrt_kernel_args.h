@@ -34,6 +34,7 @@
   X(triangles, __global const clrt_triangle*, buffer)                                                                 \
   X(materials, __global const clrt_material*, buffer) /* of planes and triangles */                                   \
   X(pass, const int, integer)                         /* subsampling's launch, 0 or 1 (clrt_subsample.h) */           \
+  X(status, __global int*, buffer)                    /* the device status word (clrt_device_status.h) */             \
   LAYERS_X(layers, __global float*, buffer)           /* CLRT_LAYER_FLOATS per pixel (clrt_layers.h) */
 
 #ifdef __OPENCL_VERSION__

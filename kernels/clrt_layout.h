@@ -35,6 +35,12 @@ typedef std::int32_t clrt_i32;
 #define CLRT_LIGHT_POINT 1
 #define CLRT_LIGHT_DIRECTIONAL 2
 
+/* Bits of the device status word (the kernel's `status` argument, one int
+ * per launch, zeroed by the host before it): what a work-item found wrong
+ * with its own run. The host turns a set bit into an error and drops the
+ * tile (host/render/device_renderer.cpp). */
+#define CLRT_STATUS_LOOP_LIMIT 1 /* the driver ended the work-item's loops early (clrt_device_status.h) */
+
 /* Largest recursion depth accepted anywhere (scene files, CLI, kernels).
  * The generic kernel's explicit stack has CLRT_MAX_DEPTH + 1 frames. */
 #define CLRT_MAX_DEPTH 64

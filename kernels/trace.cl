@@ -24,9 +24,11 @@
  *   clrt_subsample.h    subsampling's two launches (--subsample)
  *   clrt_samples.h      a pixel's colour: one ray, or N x N (--spp, adaptive)
  *   clrt_film.h         the stores: colour, classes, ray counters
- *   clrt_layers.h       the AOV layers' first hit and store (-DCLRT_OUT_LAYERS) */
+ *   clrt_layers.h       the AOV layers' first hit and store (-DCLRT_OUT_LAYERS)
+ *   clrt_device_status.h  checks of a work-item's own run (the status word) */
 #include "clrt_block.h"
 #include "clrt_camera.h"
+#include "clrt_device_status.h"
 #include "clrt_film.h"
 #include "clrt_kernel_args.h"
 #include "clrt_layers.h"
@@ -46,6 +48,7 @@ __kernel void render(CLRT_RENDER_PARAMS) {
 #if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
   if (pass == 0) {
     store_camera_hits(&block, &view, x, y, &scene, classes, counters);
+    CHECK_LOOP_LIMIT(params, status);
     return;
   }
 #endif
@@ -65,4 +68,5 @@ __kernel void render(CLRT_RENDER_PARAMS) {
 #ifdef CLRT_OUT_LAYERS
   store_layers(&block, layer_floats, layers);
 #endif
+  CHECK_LOOP_LIMIT(params, status);
 }

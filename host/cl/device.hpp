@@ -38,6 +38,13 @@ inline bool simd_over_work_items(const DeviceInfo& dev) {
   return is_gpu_type(dev.type) || dev.platform_name == "rusticl" || dev.name.rfind("llvmpipe", 0) == 0;
 }
 
+// Whether the driver ends a work-item's loops after a fixed number of
+// iterations in all, silently: Mesa's llvmpipe (65 535; kernels/
+// clrt_device_status.h). Programs for it check whether that happened.
+inline bool ends_long_loops(const DeviceInfo& dev) {
+  return dev.name.rfind("llvmpipe", 0) == 0;
+}
+
 // Every device of every platform. Throws DeviceError("no OpenCL platform ...")
 // when the ICD loader finds none.
 std::vector<DeviceInfo> list_devices();

@@ -105,6 +105,7 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
     throw UserError("precision fp64 needs a device with cl_khr_fp64; this device has none (use --precision robust)");
   std::vector<std::string> options = {"-cl-std=CL1.2", define("CLRT_PRECISION", kernel_code(cfg.precision))};
   if (cfg.denorms_zero) options.push_back("-cl-denorms-are-zero");
+  if (cfg.loop_limit_probe) options.push_back("-DCLRT_LOOP_LIMIT_PROBE");
   if (cfg.precision == Precision::Fast) options.push_back("-cl-fast-relaxed-math");
   if (cfg.count_rays) options.push_back("-DCLRT_COUNT_RAYS");
   // What the kernel stores per pixel: only what the caller reads (float

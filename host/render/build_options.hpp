@@ -36,6 +36,11 @@ struct KernelConfig {
   // even columns then odd (-DCLRT_SUBSAMPLE=1 shade, 2 interpolate). Set by
   // DeviceRenderer::prepare() from the frame's Sampling.
   Subsample subsample = Subsample::Off;
+  // Build in the check that the driver did not end the kernel's loops early
+  // (-DCLRT_LOOP_LIMIT_PROBE, kernels/clrt_device_status.h): set by
+  // DeviceRenderer on devices that do (ends_long_loops()); tests set it
+  // elsewhere to see that it reports nothing where nothing happened.
+  bool loop_limit_probe = false;
 };
 
 // Pixels per work-item: cfg.lanes if set. The renderer sets it from

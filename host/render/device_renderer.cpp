@@ -34,6 +34,7 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
                                bool overlap)
     : device_(device), config_(std::move(config)), requested_lanes_(config_.lanes), local_(local), overlap_(overlap) {
   if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);  // until prepare() chooses
+  config_.loop_limit_probe = config_.loop_limit_probe || ends_long_loops(device_);
   map_results_ = map_results && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
   context_ = cl::Context(device_.device);
   queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
@@ -188,6 +189,7 @@ void DeviceRenderer::drain() noexcept {
 }
 
 void DeviceRenderer::ensure_slot(ResultSlot& slot, size_t pixels) {
+  if (!slot.status()) slot.status = cl::Buffer(context_, CL_MEM_READ_WRITE, sizeof(cl_int));
   if (pixels <= slot.capacity) return;
   // Where the device works in host memory, the results are allocated there
   // and mapped after each tile (no copy); elsewhere they are read into the
@@ -250,7 +252,9 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   set_arg<RenderArg::planes>(kernel, planes_);
   set_arg<RenderArg::triangles>(kernel, triangles_);
   set_arg<RenderArg::materials>(kernel, materials_);
+  set_arg<RenderArg::status>(kernel, slot.status);
   if (config_.output.layers) set_arg<RenderArg::layers>(kernel, slot.layers);  // (an argument of layer builds only)
+  if (config_.loop_limit_probe) queue_.enqueueFillBuffer(slot.status, cl_int(0), 0, sizeof(cl_int));
   // Each work-item shades a block of kernel_lanes(config_) pixels,
   // packet_rows(config_) of them high. With subsampling a tile is two
   // launches (kernels/clrt_subsample.h): the ones that take every other column
@@ -332,6 +336,10 @@ void DeviceRenderer::enqueue_reads(PendingTile& tile, ResultSlot& slot, Image& d
                                       &after, &ev);
     tile.reads.push_back(ev);
   }
+  if (config_.loop_limit_probe) {
+    transfer_queue_.enqueueReadBuffer(slot.status, CL_FALSE, 0, sizeof(cl_int), &slot.status_word, &after, &ev);
+    tile.reads.push_back(ev);
+  }
   transfer_queue_.flush();
 }
 
@@ -381,11 +389,20 @@ void DeviceRenderer::store_tile(const PendingTile& tile, Image& dst) {
       queue_.enqueueReadBuffer(slot.counters, CL_TRUE, 0, n * sizeof(clrt_ray_counts), slot.counts.data());
       counts = slot.counts.data();
     }
+    if (config_.loop_limit_probe) queue_.enqueueReadBuffer(slot.status, CL_TRUE, 0, sizeof(cl_int), &slot.status_word);
   } else {
     if (!tile.colour_in_place) colour = rgba8 ? static_cast<const void*>(slot.rgba8.data()) : slot.rgb.data();
     if (classes) aux = slot.aux.data();
     if (config_.count_rays) counts = slot.counts.data();
     if (config_.output.layers) layers = slot.layer_values.data();
+  }
+  if (config_.loop_limit_probe && (slot.status_word & CLRT_STATUS_LOOP_LIMIT)) {
+    if (map_results_) {
+      if (mapped_colour) queue_.enqueueUnmapMemObject(slot.colors, mapped_colour);
+      if (mapped_layers) queue_.enqueueUnmapMemObject(slot.layers, mapped_layers);
+      if (mapped_aux) queue_.enqueueUnmapMemObject(slot.classes, mapped_aux);
+    }
+    throw DeviceError(loop_limit_message());
   }
   if (counts)
     for (size_t i = 0; i < n; ++i)  // the kernel counts in 32-bit words; they wrap past 2^31 as unsigned
@@ -430,6 +447,13 @@ void DeviceRenderer::store_tile(const PendingTile& tile, Image& dst) {
     if (mapped_aux) queue_.enqueueUnmapMemObject(slot.classes, mapped_aux);
     queue_.finish();  // (the next tile's kernel writes them again)
   }
+}
+
+std::string DeviceRenderer::loop_limit_message() const {
+  return device_.name +
+         ": the driver ended the kernel's loops early (llvmpipe stops a work-item after 65 535 loop iterations in "
+         "all), so some pixels of this frame would be wrong; render it on another device (clrt devices), or with "
+         "less work per pixel (a lower --depth, the ray cut on, fewer primitives per ray)";
 }
 
 void DeviceRenderer::store_layers(const float* values, const PendingTile& tile) const {

@@ -111,7 +111,9 @@ class DeviceRenderer {
   // results are read into (kept from tile to tile: no new pages per tile).
   struct ResultSlot {
     cl::Buffer colors, classes, counters, layers;
-    size_t capacity = 0;  // pixels
+    cl::Buffer status;       // the device status word (CLRT_STATUS_*, kernels/clrt_layout.h)
+    cl_int status_word = 0;  // read back with the tile's results
+    size_t capacity = 0;     // pixels
     std::vector<float> rgb;
     std::vector<float> layer_values;  // kLayerFloats per pixel (kernels/clrt_layers.h)
     std::vector<uint8_t> rgba8;
@@ -127,6 +129,8 @@ class DeviceRenderer {
   };
 
   void ensure_slot(ResultSlot& slot, size_t pixels);
+  // The error for a tile whose work-items found their loops ended early.
+  std::string loop_limit_message() const;
   // submit_tile() without the cleanup after an error.
   void enqueue_tile(int x0, int y0, int w, int h, Image& dst);
   void enqueue_reads(PendingTile& tile, ResultSlot& slot, Image& dst);

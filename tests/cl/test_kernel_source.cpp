@@ -39,7 +39,7 @@ const std::string kParts[] = {"clrt_layout.h",   "clrt_kernel_args.h", "clrt_con
                               "clrt_math.h",     "clrt_scene.h",       "clrt_sphere.h", "clrt_flat.h",
                               "clrt_query.h",    "clrt_query_all.h",   "clrt_bvh.h",    "clrt_shade.h",
                               "clrt_ray_tree.h", "clrt_camera.h",      "clrt_block.h",  "clrt_subsample.h",
-                              "clrt_samples.h",  "clrt_film.h",        "clrt_layers.h"};
+                              "clrt_samples.h",  "clrt_film.h",        "clrt_layers.h", "clrt_device_status.h"};
 
 }  // namespace
 

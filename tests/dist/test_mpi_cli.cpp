@@ -194,10 +194,19 @@ TEST_CASE("mpirun: a rank whose link stalls mid-message ends the job within the 
   // ended (`timeout` ends it here after 120 s, before CTest's limit, so that
   // a hang shows its output; a machine with load 10 on 2 cores once saw
   // mpirun wait on after its three ranks had exited).
-  const RunResult job = run_command_line(
+  const std::string line =
       "timeout 120 mpirun -q --oversubscribe --allow-run-as-root --mca btl tcp,self -np 3 " +
       clrt_test::clrt_command({"render", clrt_test::source_path("scenes/cgfs-demo.json"), "-o", out, "--width", "640",
-                               "--height", "480", "--aspect", "image", "--mpi-test-stall", "2", "--mpi-timeout", "3"}));
+                               "--height", "480", "--aspect", "image", "--mpi-test-stall", "2", "--mpi-timeout", "3"});
+  RunResult job = run_command_line(line);
+  // Open MPI 4.1's mpirun itself sometimes crashes while it tears the job
+  // down after MPI_Abort (SIGSEGV in PMIx_server_finalize, under orte_finalize,
+  // after clrt's error line: seen once in CI at load ~4 on 2 cores, never in
+  // 15 quiet runs). That is the launcher's fault, not the job's: run again.
+  if (job.status != 2 && job.err.find("PMIx_server_finalize") != std::string::npos) {
+    WARN("mpirun crashed in its own teardown (Open MPI's PMIx_server_finalize); running the job again");
+    job = run_command_line(line);
+  }
   INFO(job.err);
   CHECK(job.status == 2);
   const std::vector<std::string> lines = clrt_test::clrt_lines(job.err);

@@ -16,8 +16,7 @@ namespace test_kernel_args {
 
 using namespace clrt;
 
-TEST_CASE("the built render kernel takes the host's list of arguments, by name and in order",
-          "[opencl][kernel_args]") {
+TEST_CASE("the built render kernel takes the host's list of arguments, by name and in order", "[opencl][kernel_args]") {
   const DeviceInfo dev = clrt_test::test_device();
   const cl::Context ctx(dev.device);
   const Scene scene = clrt_test::load("scenes/cgfs-demo.json");
