@@ -31,6 +31,34 @@ inline clrt::DeviceInfo test_device() {
   return clrt::select_device(test_device_spec());
 }
 
+// The environment under which clrt stores programs in its own cache on PoCL:
+// with PoCL's kernel cache off (clrt stores none where the driver keeps its
+// own: cl/program.hpp, driver_caches_programs()). Tests of clrt's cache run
+// with it, so that they check its store and load on the default device.
+inline const char* kStoringDriverEnv = "POCL_KERNEL_CACHE=0";
+// The same, set in this process while it lives (clrt reads it at each build).
+class StoringDriver {
+ public:
+  StoringDriver() {
+    const char* old = std::getenv("POCL_KERNEL_CACHE");
+    had_ = old != nullptr;
+    if (had_) old_ = old;
+    ::setenv("POCL_KERNEL_CACHE", "0", 1);
+  }
+  ~StoringDriver() {
+    if (had_)
+      ::setenv("POCL_KERNEL_CACHE", old_.c_str(), 1);
+    else
+      ::unsetenv("POCL_KERNEL_CACHE");
+  }
+  StoringDriver(const StoringDriver&) = delete;
+  StoringDriver& operator=(const StoringDriver&) = delete;
+
+ private:
+  bool had_ = false;
+  std::string old_;
+};
+
 // A renderer on the test device. Without a forced lane count it renders with
 // the device's default, without the timed probe of lane counts (one program
 // per configuration, the same every run; the image does not depend on the

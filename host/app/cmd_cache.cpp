@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/options.hpp"
+#include "cl/program.hpp"
 #include "cl/program_cache.hpp"
 #include "dist/communicator.hpp"
 #include "dist/job.hpp"
@@ -51,6 +52,10 @@ std::vector<std::string> warm_programs(const RenderOptions& o, const std::vector
   settings.kernel.output = FrameContents{output_pixel_format("frame." + format, format), /*classes=*/false};
   std::unique_ptr<Renderer> renderer;
   std::vector<std::string> lines;
+  // (where every device's driver caches its own builds, clrt stores none:
+  // cl/program.hpp, driver_caches_programs())
+  const std::vector<DeviceInfo> devices = o.device.devices();
+  const bool driver_keeps = std::all_of(devices.begin(), devices.end(), driver_caches_programs);
   for (size_t i = 0; i < scenes.size(); ++i) {
     if (!renderer) renderer = std::make_unique<Renderer>(o.device.devices(), settings);
     renderer->prepare(scenes[i], o.image.width, o.image.height, o.image.effective_depth(scenes[i]),
@@ -64,7 +69,8 @@ std::vector<std::string> warm_programs(const RenderOptions& o, const std::vector
     char ms[32];
     std::snprintf(ms, sizeof ms, "%.1f ms", f.build_ms);
     lines.push_back(o.scene_paths[i] + ": " + renderer->device_names() + ": " +
-                    (f.build_cached ? "in the cache already (loaded in " + std::string(ms) + ")"
+                    (f.build_cached   ? "in the cache already (loaded in " + std::string(ms) + ")"
+                     : driver_keeps ? "built in " + std::string(ms) + "; the driver keeps it in its own cache (PoCL)"
                                     : "built and stored in the cache in " + std::string(ms)));
   }
   return lines;

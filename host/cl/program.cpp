@@ -2,6 +2,7 @@
 #include "cl/program.hpp"
 
 #include <chrono>
+#include <cstdlib>
 #include <sstream>
 
 #include "cl/program_cache.hpp"
@@ -60,12 +61,19 @@ cl::Program build_from_source(const cl::Context& ctx, const DeviceInfo& dev, con
 
 }  // namespace
 
+bool driver_caches_programs(const DeviceInfo& dev) {
+  if (dev.platform_name != "Portable Computing Language") return false;
+  const char* cache = std::getenv("POCL_KERNEL_CACHE");
+  return !(cache && std::string(cache) == "0");
+}
+
 cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const std::string& source,
                           const std::string& options, BuildStats* stats, BuildFlags flags) {
   auto t0 = std::chrono::steady_clock::now();
   ProgramCacheKey key = make_key(dev, source, options);
   cl::Program program;
   bool hit = false, stored = false;
+  const bool driver_keeps = driver_caches_programs(dev);
   std::string note;
   if (flags.use_cache) {
     if (auto bin = cache_load(key); bin && cache_begin_load(key, &note)) {
@@ -78,7 +86,7 @@ cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const s
   }
   if (!hit) {
     program = build_from_source(ctx, dev, source, options);
-    if (flags.use_cache) {
+    if (flags.use_cache && !driver_keeps) {
       try {
         auto bins = program.getInfo<CL_PROGRAM_BINARIES>();
         if (bins.size() == 1) stored = cache_store(key, bins[0]);
@@ -95,6 +103,7 @@ cl::Program build_program(const cl::Context& ctx, const DeviceInfo& dev, const s
          << (hit                ? "loaded from cache"
              : !flags.use_cache ? "built (cache off)"
              : stored           ? "built, stored in cache"
+             : driver_keeps     ? "built, not stored in the cache (the driver keeps its own: PoCL)"
                                 : "built, not stored in the cache")
          << " in " << ms << " ms" << (flags.use_cache ? " [" + cache_entry_path(key) + "]" : "");
     log_message(LogLevel::Info, line.str());

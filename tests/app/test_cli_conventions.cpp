@@ -203,7 +203,8 @@ TEST_CASE("cache warm stores the programs a render then loads", "[cli][cache][op
   // `cache warm` builds and stores what a render with the same options
   // would use, so that render loads it (its --verbose line says so).
   TempDir dir;
-  const std::string env = "CLRT_CACHE_DIR=" + clrt_test::shell_quote(dir / "cache");
+  const std::string storing = std::string(clrt_test::kStoringDriverEnv) + " ";
+  const std::string env = storing + "CLRT_CACHE_DIR=" + clrt_test::shell_quote(dir / "cache");
   const std::string glass = clrt_test::source_path("scenes/glass.json");
   const std::vector<std::string> size{"--width", "64", "--height", "48", "--aspect", "image"};
   const auto with = [&](std::vector<std::string> args) {
@@ -212,7 +213,7 @@ TEST_CASE("cache warm stores the programs a render then loads", "[cli][cache][op
   };
   // Cold, a render builds (so that the check below can fail).
   RunResult cold = run_clrt(with({"render", glass, "-o", dir / clrt_test::image_name("cold"), "--verbose"}),
-                            "CLRT_CACHE_DIR=" + clrt_test::shell_quote(dir / "other"));
+                            storing + "CLRT_CACHE_DIR=" + clrt_test::shell_quote(dir / "other"));
   INFO(cold.err);
   CHECK_THAT(cold.err, Contains("program built, stored in cache"));
   const RunResult warm = run_clrt(with({"cache", "warm", glass}), env);

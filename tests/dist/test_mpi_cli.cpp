@@ -281,7 +281,8 @@ TEST_CASE("mpirun clrt cache warm: every rank warms its node's cache, rank 0 rep
   TempDir dir;
   // (Both ranks run here, so they share one cache: the second finds the
   // entry the first stored, or stores the same one; either is a warm cache.)
-  const std::string env = "CLRT_CACHE_DIR=" + shell_quote(dir / "cache") + " ";
+  const std::string env =
+      std::string(clrt_test::kStoringDriverEnv) + " CLRT_CACHE_DIR=" + shell_quote(dir / "cache") + " ";
   const std::string scene = clrt_test::source_path("scenes/cgfs-demo.json");
   const RunResult job = run_command_line(
       env + clrt_test::mpirun_prefix(2) +

@@ -12,6 +12,7 @@
 #include "scene/scene_json.hpp"
 #include "cli_run.hpp"
 #include "test_util.hpp"
+#include "util/error.hpp"
 
 // (clrt_tests is a unity build: each file's code is in a namespace of its own.)
 namespace test_loop_limit {

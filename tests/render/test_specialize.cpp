@@ -91,6 +91,7 @@ TEST_CASE("every precision and lane count gives the generic kernel's image", "[o
 }
 
 TEST_CASE("program cache: a second build is a hit and renders the same image", "[opencl][cache]") {
+  const clrt_test::StoringDriver storing;
   clrt_test::TempDir dir;
   std::string old = std::getenv("CLRT_CACHE_DIR") ? std::getenv("CLRT_CACHE_DIR") : "";
   ::setenv("CLRT_CACHE_DIR", dir.path().c_str(), 1);
