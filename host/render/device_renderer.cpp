@@ -127,6 +127,19 @@ void DeviceRenderer::choose_lanes(const Scene& scene, int depth, const SceneData
   const auto t0 = Clock::now();
   std::vector<BuiltProgram> programs;
   Image scratch(width_, height_, config_.output);
+  // The probe's tiles store their layers too (programs with -DCLRT_OUT_LAYERS
+  // write them): into scratch layers, not the frame's, which begin_frame()
+  // has not named yet.
+  FrameLayers scratch_layers;
+  struct Restore {  // (also when the probe throws: no pointer to scratch_layers outlives it)
+    FrameLayers*& slot;
+    FrameLayers* value;
+    ~Restore() { slot = value; }
+  } restore{layers_out_, layers_out_};
+  if (config_.output.layers) {
+    scratch_layers = FrameLayers(width_, height_, config_.output.layers);
+    layers_out_ = &scratch_layers;
+  }
   for (int lanes : candidates) {
     config_.lanes = lanes;
     use_program(build_options(config_, scene, depth, device_.fp64));

@@ -129,6 +129,21 @@ TEST_CASE("the kernel's layers match the reference's within compare's tolerances
   }
 }
 
+TEST_CASE("layers of a frame whose lane count the timed probe chooses: the forced lane count's", "[opencl][aov]") {
+  // With the hierarchy and no --lanes, prepare() times the candidate lane
+  // counts on tiles of the frame (render/lane_choice.hpp) before the frame
+  // has named where its layers go: the probe's tiles store theirs aside
+  // (before, that stopped the render with an internal error).
+  const Scene flat = clrt_test::flat_scene();
+  KernelConfig probed;
+  probed.accel = Accel::Bvh;  // (lanes 0 and probe_lanes: the probe runs on CPUs)
+  const FrameLayers chosen = render_layers(flat, 64, 48, kAllLayers, probed);
+  const LayerComparison cmp = against_reference(flat, 64, 48, chosen);
+  INFO(cmp.failures());
+  CHECK(cmp.pass());
+  CHECK(cmp.same_hit > 1000);
+}
+
 TEST_CASE("layers are those of the pixel centre's ray whatever the sampling, and leave the colour alone",
           "[opencl][aov]") {
   const Scene scene = clrt_test::load("scenes/cgfs-demo.json");
