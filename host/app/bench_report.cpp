@@ -41,6 +41,7 @@ nlohmann::ordered_json bench_json(const BenchResult& r) {
       {"build_warm", stats_json(r.build_warm, "ms")},
       {"build_warm_ms", r.build_warm.median},
       {"build_warm_cached", r.build_warm_cached},
+      {"build_warm_driver_cached", r.build_warm_driver_cached},
       {"pocl_kernel_cache", pocl_cache ? pocl_cache : "default"},
       {"upload", stats_json(r.upload, "ms")},
       {"upload_ms", r.upload.median},
@@ -114,7 +115,9 @@ void print_bench(const BenchResult& r) {
   std::printf("options        %s\n", r.options.c_str());
   std::printf("build cold     %s (no program cache)\n", format_stats(r.build_cold, "ms", 1).c_str());
   std::printf("build warm     %s%s\n", format_stats(r.build_warm, "ms", 1).c_str(),
-              r.build_warm_cached ? " (cache hit)" : " (cache miss)");
+              r.build_warm_cached          ? " (cache hit)"
+              : r.build_warm_driver_cached ? " (the driver's own cache: clrt stores nothing there)"
+                                           : " (cache miss)");
   std::printf("upload         %s\n", format_stats(r.upload, "ms", 3).c_str());
   std::printf("frame          %s (warm: launches + the result in host memory, in the frame's format)\n",
               format_stats(r.frame).c_str());

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cl/launch_timing.hpp"
+#include "cl/program.hpp"
 #include "embree_tracer.hpp"
 #include "omp_tracer.hpp"
 #include "reference/reference.hpp"
@@ -108,6 +109,7 @@ void time_builds(const Scene& scene, const std::vector<DeviceInfo>& devs, const 
   // Make sure the entry exists, then time loads from the cache.
   if (settings.kernel.use_cache) {
     r.build_warm_cached = true;
+    r.build_warm_driver_cached = std::all_of(devs.begin(), devs.end(), driver_caches_programs);
     for (int i = 0; i <= build_repeat; ++i) {
       step("cached build " + std::to_string(i + 1) + " of " + std::to_string(build_repeat + 1));
       Renderer c(devs, settings);

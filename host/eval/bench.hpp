@@ -72,7 +72,8 @@ struct BenchResult {
   std::string tracers_not_run;   // why the OpenMP/Embree tracers were not run ("" when they were)
   std::string omp_not_run;       // why the OpenMP tracer alone was not run (scenes with triangles)
   Stats build_cold, build_warm;  // ms per build of every device (the longest, they run in parallel)
-  bool build_warm_cached = false;
+  bool build_warm_cached = false;         // every warm build loaded clrt's cached binary
+  bool build_warm_driver_cached = false;  // the drivers keep the programs instead (cl/program.hpp: PoCL)
   Stats upload;                // ms, scene buffers (one per build above)
   double end_to_end_ms = 0;    // N=1: new renderer, (warm) build + upload + first frame
   double first_launch_ms = 0;  // N=1: kernel time of that first frame
