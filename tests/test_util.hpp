@@ -36,27 +36,31 @@ inline clrt::DeviceInfo test_device() {
 // own: cl/program.hpp, driver_caches_programs()). Tests of clrt's cache run
 // with it, so that they check its store and load on the default device.
 inline const char* kStoringDriverEnv = "POCL_KERNEL_CACHE=0";
-// The same, set in this process while it lives (clrt reads it at each build).
-class StoringDriver {
+// Sets an environment variable for a scope, then restores it.
+class ScopedEnv {
  public:
-  StoringDriver() {
-    const char* old = std::getenv("POCL_KERNEL_CACHE");
-    had_ = old != nullptr;
-    if (had_) old_ = old;
-    ::setenv("POCL_KERNEL_CACHE", "0", 1);
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
+    ::setenv(name, value, 1);
   }
-  ~StoringDriver() {
+  ~ScopedEnv() {
     if (had_)
-      ::setenv("POCL_KERNEL_CACHE", old_.c_str(), 1);
+      ::setenv(name_.c_str(), old_.c_str(), 1);
     else
-      ::unsetenv("POCL_KERNEL_CACHE");
+      ::unsetenv(name_.c_str());
   }
-  StoringDriver(const StoringDriver&) = delete;
-  StoringDriver& operator=(const StoringDriver&) = delete;
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
 
  private:
+  std::string name_, old_;
   bool had_ = false;
-  std::string old_;
+};
+
+// kStoringDriverEnv set in this process while it lives (clrt reads it at
+// each build).
+struct StoringDriver : ScopedEnv {
+  StoringDriver() : ScopedEnv("POCL_KERNEL_CACHE", "0") {}
 };
 
 // A renderer on the test device. Without a forced lane count it renders with
