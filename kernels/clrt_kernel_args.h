@@ -1,9 +1,9 @@
-/* clrt_kernel_args.h - the render kernel's arguments, declared once, for
- * both sides: the kernel expands the list into its parameter list
- * (CLRT_RENDER_PARAMS, trace.cl), the host into the enum it sets them by
- * (host/render/kernel_args.hpp: RenderArg, set_arg()). An argument added
- * here reaches both; the host checks the built kernel's count against the
- * list (DeviceRenderer::use_program) and a test its names
+/* clrt_kernel_args.h - the render kernels' arguments, declared once, for
+ * both sides: every entry point (trace.cl) expands the list into its
+ * parameter list (CLRT_RENDER_PARAMS), the host into the enum it sets them
+ * by (host/render/kernel_args.hpp: RenderArg, set_arg()). An argument added
+ * here reaches both; the host checks each built kernel's count against the
+ * list (DeviceRenderer::use_program) and a test their names
  * (tests/render/test_kernel_args.cpp).
  *
  * Each entry is X(name, kernel type, host kind): the name is the kernel's
@@ -33,24 +33,28 @@
   X(planes, __global const clrt_plane*, buffer)                                                                       \
   X(triangles, __global const clrt_triangle*, buffer)                                                                 \
   X(materials, __global const clrt_material*, buffer) /* of planes and triangles */                                   \
-  X(pass, const int, integer)                         /* subsampling's launch, 0 or 1 (clrt_subsample.h) */           \
   X(status, __global int*, buffer)                    /* the device status word (clrt_device_status.h) */             \
   LAYERS_X(layers, __global float*, buffer)           /* CLRT_LAYER_FLOATS per pixel (clrt_layers.h) */
 
 #ifdef __OPENCL_VERSION__
-/* The kernel's parameter list: every entry as ", type name", the first
- * comma dropped (CLRT_DROP_FIRST, through CLRT_APPLY so that the list is
- * expanded into arguments first). */
+/* The entry points' parameter list, every entry as ", type name", and the
+ * same names as arguments, ", name" (an entry point passing its parameters
+ * on), the first comma dropped (CLRT_DROP_FIRST, through CLRT_APPLY so that
+ * the list is expanded into arguments first); the layers only in layer
+ * builds. */
 #define CLRT_PARAM(name, type, kind) , type name
+#define CLRT_ARGUMENT(name, type, kind) , name
 #define CLRT_NO_PARAM(name, type, kind)
 #ifdef CLRT_OUT_LAYERS
-#define CLRT_LAYERS_PARAM CLRT_PARAM
+#define CLRT_LAYERS_ENTRY(entry) entry
 #else
-#define CLRT_LAYERS_PARAM CLRT_NO_PARAM
+#define CLRT_LAYERS_ENTRY(entry) CLRT_NO_PARAM
 #endif
 #define CLRT_DROP_FIRST(first, ...) __VA_ARGS__
 #define CLRT_APPLY(macro, ...) macro(__VA_ARGS__)
-#define CLRT_RENDER_PARAMS CLRT_APPLY(CLRT_DROP_FIRST, CLRT_RENDER_ARGS(CLRT_PARAM, CLRT_LAYERS_PARAM))
+#define CLRT_EXPAND_ARGS(entry) CLRT_APPLY(CLRT_DROP_FIRST, CLRT_RENDER_ARGS(entry, CLRT_LAYERS_ENTRY(entry)))
+#define CLRT_RENDER_PARAMS CLRT_EXPAND_ARGS(CLRT_PARAM)
+#define CLRT_RENDER_ARGUMENTS CLRT_EXPAND_ARGS(CLRT_ARGUMENT)
 #endif
 
 #endif /* CLRT_KERNEL_ARGS_H */

@@ -2,12 +2,19 @@
  * work-item shades a block of CLRT_LANES pixels, one per SIMD lane; every
  * lane runs exactly the per-pixel algorithm (its own rays, its own slots of
  * the tree walk) with branches turned into per-lane masks. This file is the
- * entry point only: what a launch does, in order, each step a call into the
+ * entry points only: what a launch does, in order, each step a call into the
  * part that owns it.
+ *
+ * A tile is one launch of `render`, or with subsampling (-DCLRT_SUBSAMPLE,
+ * clrt_subsample.h) a launch of `subsample_first` then one of
+ * `subsample_second`. Each entry point is the one body with its launch's
+ * number a constant, so that each compiles only what its launch does; a
+ * program defines only the entry points its host launches (PoCL compiles
+ * each on its own).
  *
  * The parts, each included once (host/cl/kernel_source.cpp expands them):
  *   clrt_layout.h       structs and codes shared with the host
- *   clrt_kernel_args.h  this kernel's arguments, shared with the host
+ *   clrt_kernel_args.h  the entry points' arguments, shared with the host
  *   clrt_config.h       the -D options from the host, defaults, derived switches
  *   clrt_lanes.h        the precision's scalar, lane types and mask helpers
  *   clrt_math.h         3-vectors, hi/lo values, per-precision arithmetic
@@ -36,7 +43,8 @@
 #include "clrt_samples.h"
 #include "clrt_subsample.h"
 
-__kernel void render(CLRT_RENDER_PARAMS) {
+/* Launch `pass` of a tile: 0, or subsampling's second launch 1. */
+CLRT_INLINE void render_launch(const int pass, CLRT_RENDER_PARAMS) {
   const pixel_block block = block_of((int)get_global_id(0), (int)get_global_id(1), x0, tile_w, tile_h, pass);
   if (!block_in_tile(&block)) return;
   const scene_data scene = {params, spheres, lights, nodes, primitives, planes, triangles, materials};
@@ -70,3 +78,16 @@ __kernel void render(CLRT_RENDER_PARAMS) {
 #endif
   CHECK_LOOP_LIMIT(params, status);
 }
+
+#if !CLRT_SUBSAMPLE
+__kernel void render(CLRT_RENDER_PARAMS) {
+  render_launch(0, CLRT_RENDER_ARGUMENTS);
+}
+#else
+__kernel void subsample_first(CLRT_RENDER_PARAMS) {
+  render_launch(0, CLRT_RENDER_ARGUMENTS);
+}
+__kernel void subsample_second(CLRT_RENDER_PARAMS) {
+  render_launch(1, CLRT_RENDER_ARGUMENTS);
+}
+#endif

@@ -87,22 +87,30 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
 }
 
 void DeviceRenderer::use_program(const std::string& opts) {
-  if (opts == built_.options && built_.kernel()) return;
+  if (opts == built_.options && !built_.kernels.empty()) return;
   BuildStats bs;
   BuiltProgram built;
   built.program = build_program(context_, device_, source_, opts, &bs, BuildFlags{config_.use_cache, config_.verbose});
-  built.kernel = cl::Kernel(built.program, "render");
-  // The kernel's parameters and the host's RenderArg come from one list
-  // (kernels/clrt_kernel_args.h); a kernel file from elsewhere (--kernel-dir)
-  // may not follow it.
-  const cl_uint arguments = built.kernel.getInfo<CL_KERNEL_NUM_ARGS>();
-  if (arguments != render_arg_count(config_.output.layers))
-    throw UserError("the render kernel takes " + std::to_string(arguments) + " arguments, this clrt passes " +
-                    std::to_string(render_arg_count(config_.output.layers)) +
-                    " (kernels/clrt_kernel_args.h; a --kernel-dir from another version?)");
-  // Default local size: (preferred multiple, 1), within the kernel's limit.
-  const size_t pm = built.kernel.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device_.device);
-  built.max_work_group = built.kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_.device);
+  for (const std::string& name : render_kernel_names(config_.subsample != Subsample::Off)) {
+    cl::Kernel kernel(built.program, name.c_str());
+    // The kernels' parameters and the host's RenderArg come from one list
+    // (kernels/clrt_kernel_args.h); a kernel file from elsewhere
+    // (--kernel-dir) may not follow it.
+    const cl_uint arguments = kernel.getInfo<CL_KERNEL_NUM_ARGS>();
+    if (arguments != render_arg_count(config_.output.layers))
+      throw UserError("the kernel " + name + " takes " + std::to_string(arguments) + " arguments, this clrt passes " +
+                      std::to_string(render_arg_count(config_.output.layers)) +
+                      " (kernels/clrt_kernel_args.h; a --kernel-dir from another version?)");
+    built.kernels.push_back(kernel);
+  }
+  // Default local size: (preferred multiple, 1), within every kernel's limit
+  // (a tile's launches share it).
+  const cl::Kernel& first = built.kernels.front();
+  const size_t pm = first.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device_.device);
+  built.max_work_group = std::numeric_limits<size_t>::max();
+  for (const cl::Kernel& kernel : built.kernels)
+    built.max_work_group =
+        std::min(built.max_work_group, kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_.device));
   built.default_local_x = int(std::max<size_t>(1, std::min(pm, built.max_work_group)));
   built.options = opts;
   built.lanes = config_.lanes;
@@ -182,7 +190,8 @@ void DeviceRenderer::check_local_size() const {
                     (item_sizes.size() < 2 || (lx <= item_sizes[0] && ly <= item_sizes[1]));
   if (!fits)
     throw UserError("--local " + std::to_string(lx) + "x" + std::to_string(ly) + ": exceeds what " + device_.name +
-                    " allows for this kernel (at most " + std::to_string(built_.max_work_group) + " work-items per group" +
+                    " allows for this kernel (at most " + std::to_string(built_.max_work_group) +
+                    " work-items per group" +
                     (item_sizes.size() >= 2 ? ", " + std::to_string(item_sizes[0]) + "x" + std::to_string(item_sizes[1])
                                             : std::string()) +
                     " per dimension)");
@@ -240,16 +249,7 @@ void DeviceRenderer::submit_tile(int x0, int y0, int w, int h, Image& dst) {
   }
 }
 
-void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
-  if (!dst.holds(width_, height_, config_.output)) throw std::logic_error("submit_tile: image of another frame");
-  const size_t n = size_t(w) * h;
-  PendingTile tile;
-  tile.x0 = x0, tile.y0 = y0, tile.w = w, tile.h = h;
-  tile.slot = next_slot_;
-  next_slot_ = (next_slot_ + 1) % 2;
-  ResultSlot& slot = slots_[tile.slot];  // free: its last tile was finished
-  ensure_slot(slot, n);
-  cl::Kernel& kernel = built_.kernel;
+void DeviceRenderer::set_tile_args(cl::Kernel& kernel, const ResultSlot& slot, int x0, int y0, int w, int h) {
   set_arg<RenderArg::params>(kernel, params_);
   set_arg<RenderArg::spheres>(kernel, spheres_);
   set_arg<RenderArg::lights>(kernel, lights_);
@@ -267,6 +267,18 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   set_arg<RenderArg::materials>(kernel, materials_);
   set_arg<RenderArg::status>(kernel, slot.status);
   if (config_.output.layers) set_arg<RenderArg::layers>(kernel, slot.layers);  // (an argument of layer builds only)
+}
+
+void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
+  if (!dst.holds(width_, height_, config_.output)) throw std::logic_error("submit_tile: image of another frame");
+  const size_t n = size_t(w) * h;
+  PendingTile tile;
+  tile.x0 = x0, tile.y0 = y0, tile.w = w, tile.h = h;
+  tile.slot = next_slot_;
+  next_slot_ = (next_slot_ + 1) % 2;
+  ResultSlot& slot = slots_[tile.slot];  // free: its last tile was finished
+  ensure_slot(slot, n);
+  for (cl::Kernel& kernel : built_.kernels) set_tile_args(kernel, slot, x0, y0, w, h);
   if (config_.loop_limit_probe) queue_.enqueueFillBuffer(slot.status, cl_int(0), 0, sizeof(cl_int));
   // Each work-item shades a block of kernel_lanes(config_) pixels,
   // packet_rows(config_) of them high. With subsampling a tile is two
@@ -292,14 +304,13 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   };
   const size_t every_other = (size_t(w) + 1) / 2;
   const Subsample mode = config_.subsample;
-  set_arg<RenderArg::pass>(kernel, cl_int(0));
-  tile.launch = start_timed(queue_, kernel, global_for(mode == Subsample::Off ? size_t(w) : every_other), local);
+  const std::vector<cl::Kernel>& kernels = built_.kernels;
+  tile.launch = start_timed(queue_, kernels[0], global_for(mode == Subsample::Off ? size_t(w) : every_other), local);
   if (mode != Subsample::Off) {
-    // Pass 1 after pass 0 (an in-order queue): timed as one launch, from
-    // the first's start to the second's end. Shade's pass 1 shades every
-    // column, interpolate's the odd ones.
-    set_arg<RenderArg::pass>(kernel, cl_int(1));
-    tile.launch = start_timed_after(tile.launch, queue_, kernel,
+    // The second launch after the first (an in-order queue): timed as one
+    // launch, from the first's start to the second's end. Shade's second
+    // launch shades every column, interpolate's the odd ones.
+    tile.launch = start_timed_after(tile.launch, queue_, kernels[1],
                                     global_for(mode == Subsample::Shade ? size_t(w) : every_other), local);
   }
 
@@ -333,8 +344,7 @@ void DeviceRenderer::enqueue_reads(PendingTile& tile, ResultSlot& slot, Image& d
   tile.reads.push_back(ev);
   if (config_.output.classes) {
     if (slot.aux.size() < n * 2) slot.aux.resize(n * 2);
-    transfer_queue_.enqueueReadBuffer(slot.classes, CL_FALSE, 0, n * 2 * sizeof(cl_int), slot.aux.data(), &after,
-                                      &ev);
+    transfer_queue_.enqueueReadBuffer(slot.classes, CL_FALSE, 0, n * 2 * sizeof(cl_int), slot.aux.data(), &after, &ev);
     tile.reads.push_back(ev);
   }
   if (config_.output.layers) {

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "cl/cl.hpp"
-#include "clrt_layout.h"
 #include "cl/device.hpp"
 #include "cl/launch_timing.hpp"
+#include "clrt_layout.h"
 #include "image/image.hpp"
 #include "image/layers.hpp"
 #include "render/build_options.hpp"
@@ -133,6 +133,9 @@ class DeviceRenderer {
   std::string loop_limit_message() const;
   // submit_tile() without the cleanup after an error.
   void enqueue_tile(int x0, int y0, int w, int h, Image& dst);
+  // Sets every argument of one of the tile's kernels: the scene's buffers,
+  // the slot's and the tile's place (x0, y0, w x h).
+  void set_tile_args(cl::Kernel& kernel, const ResultSlot& slot, int x0, int y0, int w, int h);
   void enqueue_reads(PendingTile& tile, ResultSlot& slot, Image& dst);
   // Bytes of colour the kernel writes per pixel (config_.output).
   size_t colour_bytes_per_pixel() const;
@@ -149,11 +152,11 @@ class DeviceRenderer {
   // A built program and what the launches need to know of it.
   struct BuiltProgram {
     cl::Program program;
-    cl::Kernel kernel;
+    std::vector<cl::Kernel> kernels;  // a tile's launches, in order (render_kernel_names())
     std::string options;
-    int lanes = 0;               // config_.lanes it was built for
-    int default_local_x = 1;     // preferred work-group size multiple, within max_work_group
-    size_t max_work_group = 1;   // CL_KERNEL_WORK_GROUP_SIZE
+    int lanes = 0;              // config_.lanes it was built for
+    int default_local_x = 1;    // the first kernel's preferred work-group size multiple, within max_work_group
+    size_t max_work_group = 1;  // CL_KERNEL_WORK_GROUP_SIZE, the least of the kernels'
   };
   // Makes the program of `options` (config_.lanes as built) the one
   // launched, building it unless it already is; adds to timings_.

@@ -1,17 +1,28 @@
-// kernel_args.hpp - the render kernel's arguments by name: the host's side of
-// the one list both sides expand (kernels/clrt_kernel_args.h). Setting an
-// argument names it, set_arg<RenderArg::planes>(kernel, buffer), and the
-// kind of value the list gives it is checked when compiling.
+// kernel_args.hpp - the render kernels: their names, and their arguments by
+// name: the host's side of the one list both sides expand
+// (kernels/clrt_kernel_args.h). Setting an argument names it,
+// set_arg<RenderArg::planes>(kernel, buffer), and the kind of value the list
+// gives it is checked when compiling.
 #pragma once
 #include <cstddef>
 #include <iterator>
+#include <string>
+#include <vector>
 
 #include "cl/cl.hpp"
 #include "clrt_kernel_args.h"
 
 namespace clrt {
 
-// The kernel's argument indices, in the list's order.
+// The entry points a tile launches, in order (kernels/trace.cl): one launch
+// of render, or subsampling's two. A program defines only its own, and all
+// of them take the same arguments.
+inline std::vector<std::string> render_kernel_names(bool subsample) {
+  if (subsample) return {"subsample_first", "subsample_second"};
+  return {"render"};
+}
+
+// The kernels' argument indices, in the list's order.
 enum class RenderArg : cl_uint {
 #define CLRT_ARG_ENUMERATOR(name, type, kind) name,
   CLRT_RENDER_ARGS(CLRT_ARG_ENUMERATOR, CLRT_ARG_ENUMERATOR)
