@@ -134,18 +134,9 @@ Image get_image(Reader& r) {
   const size_t n = size_t(img.width) * size_t(img.height);
   const auto sized = [n](size_t got, size_t per_pixel) { return got == 0 || got == n * per_pixel; };
   if (!sized(img.rgb.size(), 3) || !sized(img.rgba8.size(), 4) || !sized(img.unit.size(), 3) ||
-      !sized(img.hit.size(), 1) ||
-      !sized(img.shadowed.size(), 1))
+      !sized(img.hit.size(), 1) || !sized(img.shadowed.size(), 1))
     throw DeviceError("MPI: an image message whose buffers do not fit its size");
   return img;
-}
-
-Bytes encode_image(const Image& img) {
-  return encode_whole(put_image, img);
-}
-
-Image decode_image(const Bytes& b) {
-  return decode_whole(get_image, b, "an image");
 }
 
 void put_stats(Writer& w, const Stats& s) {
@@ -265,14 +256,6 @@ SweepRow get_sweep_row(Reader& r) {
   return row;
 }
 
-Bytes encode_sweep_row(const SweepRow& row) {
-  return encode_whole(put_sweep_row, row);
-}
-
-SweepRow decode_sweep_row(const Bytes& b) {
-  return decode_whole(get_sweep_row, b, "a sweep row");
-}
-
 void put_accuracy_row(Writer& w, const AccuracyRow& row) {
   w.put_text(row.scene), w.put_text(row.variant), w.put<int32_t>(row.depth), w.put<uint8_t>(row.supported);
   w.put_text(row.note);
@@ -292,12 +275,18 @@ AccuracyRow get_accuracy_row(Reader& r) {
   return row;
 }
 
-Bytes encode_accuracy_row(const AccuracyRow& row) {
-  return encode_whole(put_accuracy_row, row);
-}
-
-AccuracyRow decode_accuracy_row(const Bytes& b) {
-  return decode_whole(get_accuracy_row, b, "an accuracy row");
-}
+// The messages of a value each (eval_wire.hpp): a type's encode_ and
+// decode_ are its put_ and get_ through encode_whole() and decode_whole().
+#define CLRT_WHOLE_MESSAGE(Type, name, what)  \
+  Bytes encode_##name(const Type& value) {    \
+    return encode_whole(put_##name, value);   \
+  }                                           \
+  Type decode_##name(const Bytes& b) {        \
+    return decode_whole(get_##name, b, what); \
+  }
+CLRT_WHOLE_MESSAGE(Image, image, "an image")
+CLRT_WHOLE_MESSAGE(SweepRow, sweep_row, "a sweep row")
+CLRT_WHOLE_MESSAGE(AccuracyRow, accuracy_row, "an accuracy row")
+#undef CLRT_WHOLE_MESSAGE
 
 }  // namespace clrt::dist
