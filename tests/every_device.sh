@@ -27,29 +27,43 @@ if [ ${#others[@]} -eq 0 ]; then
   exit 0
 fi
 spec='[opencl]~[multidevice]~[cli]~[mpi-cli]~[per-case-builds]~[slow]~[dist]~[spp]'
-# One process per core, each with every n-th test: a driver's compiler
-# (rusticl's) runs on one thread, so one process would leave the other
-# cores idle. (Names go to Catch2's --input-file with its test-spec
-# characters escaped, as CTest's registration escapes them.)
+# One case per process, as many processes at a time as cores, each taking
+# the next case when it is done (xargs -P): a driver's compiler (rusticl's)
+# runs on one thread, so one process would leave the other cores idle, and
+# a fixed share of the cases per process left one core idle while the other
+# finished its share. Nothing is lost between cases: programs are shared
+# through the program cache (CLRT_CACHE_DIR) and the driver's own. (Names
+# go to Catch2's --input-file with its test-spec characters escaped, as
+# CTest's registration escapes them.)
 jobs=$(nproc 2>/dev/null || echo 1)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$tests" "$spec" --list-test-names-only | sed -e '/^$/d' -e 's/[][,\\]/\\&/g' >"$work/names" || true
 [ -s "$work/names" ] || { echo "every_device: no test matches $spec"; exit 1; }
-awk -v n="$jobs" -v dir="$work" '{ print > (dir "/part" (NR % n)) }' "$work/names"
-parts=("$work"/part*)
+count=$(wc -l <"$work/names")
+# run_case INDEX K: the K-th case on device INDEX, its output in case.K.log;
+# a failed case leaves case.K.failed. (Called by xargs, through bash -c.)
+# shellcheck disable=SC2317
+run_case() {
+  sed -n "$2p" "$work/names" >"$work/case.$2"
+  CLRT_TEST_DEVICE=$1 CLRT_TEST_BUILDS=default "$tests" --input-file "$work/case.$2" --durations yes \
+    >"$work/case.$2.log" 2>&1 || touch "$work/case.$2.failed"
+}
+export -f run_case
+export work tests
 status=0
 for index in "${others[@]}"; do
   echo "== OpenCL tests on device $index: $("$clrt" devices | awk -v i="$index" '$1 == i {$1=""; print}' | cut -c1-90)"
-  pids=()
-  for part in "${parts[@]}"; do
-    CLRT_TEST_DEVICE=$index CLRT_TEST_BUILDS=default "$tests" --input-file "$part" --durations yes >"$part.log" 2>&1 &
-    pids+=($!)
+  rm -f "$work"/case.*
+  # shellcheck disable=SC2016
+  seq 1 "$count" | xargs -P "$jobs" -n 1 bash -c 'run_case "$0" "$1"' "$index"
+  for k in $(seq 1 "$count"); do
+    if [ -e "$work/case.$k.failed" ]; then
+      status=1
+      echo "-- FAILED: $(cat "$work/case.$k")"
+    fi
+    cat "$work/case.$k.log"
   done
-  for k in "${!pids[@]}"; do wait "${pids[$k]}" || status=1; done
-  for part in "${parts[@]}"; do
-    echo "-- $(wc -l <"$part") of them in one process:"
-    cat "$part.log"
-  done
+  echo "-- $count cases, $(find "$work" -name 'case.*.failed' | wc -l) failed"
 done
 exit $status

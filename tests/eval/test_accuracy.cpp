@@ -1,6 +1,5 @@
 // test_accuracy.cpp - `clrt accuracy`: rows with sane metrics, the variants'
 // error ordering on the demo, the CSV/JSON/plot outputs.
-#include <OpenImageIO/imagebuf.h>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -8,6 +7,7 @@
 #include "cl/device.hpp"
 #include "cli_run.hpp"
 #include "eval/accuracy.hpp"
+#include "image/image_file.hpp"
 #include "render/precision_support.hpp"
 #include "test_util.hpp"
 #include "util/error.hpp"
@@ -93,10 +93,8 @@ TEST_CASE("clrt accuracy writes table, JSON, CSV and a non-empty plot", "[accura
   CHECK(j["rows"][1]["kernel_ms"].size() == 1);
   CHECK(j["rows"][1]["pixels"] == 64 * 48);
   std::string text = clrt_test::slurp(csv);
-  CHECK(std::count(text.begin(), text.end(), '\n') == 3);  // header + 2 rows
-  OIIO::ImageBuf img(png);
-  REQUIRE(img.read());
-  CHECK(img.spec().width > 100);
+  CHECK(std::count(text.begin(), text.end(), '\n') == 3);   // header + 2 rows
+  CHECK(clrt::read_image(png, 4096, 1 << 24).width > 100);  // (through clrt's imaging module)
 
   auto t = clrt_test::run_clrt({"accuracy", clrt_test::source_path("scenes/cgfs-demo.json"), "--width", "32",
                                 "--height", "32", "--repeat", "1", "--variants", "robust"});
