@@ -3,10 +3,10 @@
  * (clrt_lanes.h), row by row. Lanes beyond the tile's edge are traced and
  * never stored.
  *
- * Subsampling's strided launches (clrt_subsample.h: interpolate's both,
- * shade's first) take every other column of the tile, those of global
- * parity `pass`: a block then spans tile columns first_col + 2 (px + lane
- * column). */
+ * A launch shades the tile columns first_column + column_step c (kernel
+ * arguments): every column, or with subsampling (clrt_subsample.h) every
+ * other one, those of one parity of the image's columns. A block then spans
+ * tile columns first_column + column_step (px + lane column). */
 #ifndef CLRT_BLOCK_H
 #define CLRT_BLOCK_H
 
@@ -19,25 +19,18 @@ typedef struct pixel_block {
   int tile_w, tile_h;
 } pixel_block;
 
-/* Work-item (gx, gy)'s block in a tile at image column x0 of tile_w x
- * tile_h pixels, for launch `pass`. */
-CLRT_INLINE pixel_block block_of(const int gx, const int gy, const int x0, const int tile_w, const int tile_h,
-                                 const int pass) {
+/* Work-item (gx, gy)'s block in a tile of tile_w x tile_h pixels, in a
+ * launch over the tile columns first_column + column_step c. */
+CLRT_INLINE pixel_block block_of(const int gx, const int gy, const int first_column, const int column_step,
+                                 const int tile_w, const int tile_h) {
   pixel_block b;
   b.px = gx * CLRT_PACKET_COLS;
   b.py = gy * CLRT_PACKET_ROWS;
   b.tile_w = tile_w;
   b.tile_h = tile_h;
-#if CLRT_SUBSAMPLE
-  const int strided = CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE || pass == 0;
-  b.first_col = strided ? (pass - x0) & 1 : 0; /* global columns of parity `pass` */
-  b.col_step = strided ? 2 : 1;
-  b.columns = strided ? (tile_w - b.first_col + 1) / 2 : tile_w;
-#else
-  b.first_col = 0;
-  b.col_step = 1;
-  b.columns = tile_w;
-#endif
+  b.first_col = first_column;
+  b.col_step = column_step;
+  b.columns = (tile_w - first_column + column_step - 1) / column_step;
   return b;
 }
 

@@ -35,8 +35,7 @@
  *   CLRT_SUBSAMPLE       the book's subsampling (host/scene/sampling.hpp):
  *                        0 off (default), CLRT_SUBSAMPLE_SHADE or
  *                        CLRT_SUBSAMPLE_INTERPOLATE; a frame is two launches
- *                        per tile, of two entry points (trace.cl,
- *                        clrt_subsample.h)
+ *                        per tile (trace.cl, clrt_subsample.h)
  *   CLRT_LANES           pixels per work-item: 1 (when absent), 4, 8 or 16;
  *                        the host picks it (default_lanes(), build_options.hpp)
  *   CLRT_PACKET_ROWS     rows of the work-item's block of pixels (1 when

@@ -28,6 +28,8 @@
   X(y0, const int, integer)                           /* its first row, */                                            \
   X(tile_w, const int, integer)                       /* its width */                                                 \
   X(tile_h, const int, integer)                       /* and height */                                                \
+  X(first_column, const int, integer)                 /* the launch's tile columns: first_column, */                  \
+  X(column_step, const int, integer)                  /* then every column_step-th (clrt_block.h) */                  \
   X(nodes, __global const clrt_wide_node*, buffer)    /* the hierarchy (-DCLRT_BVH) */                                \
   X(primitives, __global const int*, buffer)          /* its leaves' entries */                                       \
   X(planes, __global const clrt_plane*, buffer)                                                                       \
@@ -37,24 +39,19 @@
   LAYERS_X(layers, __global float*, buffer)           /* CLRT_LAYER_FLOATS per pixel (clrt_layers.h) */
 
 #ifdef __OPENCL_VERSION__
-/* The entry points' parameter list, every entry as ", type name", and the
- * same names as arguments, ", name" (an entry point passing its parameters
- * on), the first comma dropped (CLRT_DROP_FIRST, through CLRT_APPLY so that
- * the list is expanded into arguments first); the layers only in layer
- * builds. */
+/* The entry points' parameter list: every entry as ", type name", the
+ * first comma dropped (CLRT_DROP_FIRST, through CLRT_APPLY so that the list
+ * is expanded into arguments first); the layers only in layer builds. */
 #define CLRT_PARAM(name, type, kind) , type name
-#define CLRT_ARGUMENT(name, type, kind) , name
 #define CLRT_NO_PARAM(name, type, kind)
 #ifdef CLRT_OUT_LAYERS
-#define CLRT_LAYERS_ENTRY(entry) entry
+#define CLRT_LAYERS_PARAM CLRT_PARAM
 #else
-#define CLRT_LAYERS_ENTRY(entry) CLRT_NO_PARAM
+#define CLRT_LAYERS_PARAM CLRT_NO_PARAM
 #endif
 #define CLRT_DROP_FIRST(first, ...) __VA_ARGS__
 #define CLRT_APPLY(macro, ...) macro(__VA_ARGS__)
-#define CLRT_EXPAND_ARGS(entry) CLRT_APPLY(CLRT_DROP_FIRST, CLRT_RENDER_ARGS(entry, CLRT_LAYERS_ENTRY(entry)))
-#define CLRT_RENDER_PARAMS CLRT_EXPAND_ARGS(CLRT_PARAM)
-#define CLRT_RENDER_ARGUMENTS CLRT_EXPAND_ARGS(CLRT_ARGUMENT)
+#define CLRT_RENDER_PARAMS CLRT_APPLY(CLRT_DROP_FIRST, CLRT_RENDER_ARGS(CLRT_PARAM, CLRT_LAYERS_PARAM))
 #endif
 
 #endif /* CLRT_KERNEL_ARGS_H */

@@ -1,16 +1,18 @@
 /* clrt_subsample.h - the book's subsampling (host/scene/sampling.hpp), one
- * ray per pixel in two launches, `pass` 0 then 1:
- *   shade:       pass 0 finds the camera hits of the image's even columns
- *                (no shading); pass 1 shades every pixel, even ones on
- *                their own hit, odd ones on their neighbours' where they
- *                agree (assumed_intersection()); a block searches only
+ * ray per pixel in two launches (the host's order, an in-order queue):
+ *   shade:       camera_hits finds the camera hits of the image's even
+ *                columns (no shading); then render shades every pixel, even
+ *                ones on their own hit, odd ones on their neighbours' where
+ *                they agree (assumed_intersection()); a block searches only
  *                when one of its lanes has no hit to go on;
- *   interpolate: pass 0 traces the even columns; pass 1 the odd ones,
- *                interpolating where the neighbours agree.
- * The launches' columns are clrt_block.h's; between them the tile's
- * classes buffer carries the hit ids (and interpolate's colours stay in
- * its colours buffer). Builds without -DCLRT_SUBSAMPLE use only
- * ASSUME_NOTHING and the guess that assumes nothing. */
+ *   interpolate: render over the even columns, which it traces; then render
+ *                over the odd ones, interpolating where the neighbours agree.
+ * What a pixel takes from the first launch follows from its column's
+ * parity, not from the launch; the launches' columns are clrt_block.h's.
+ * Between them the tile's classes buffer carries the hit ids (and
+ * interpolate's colours stay in its colours buffer). Builds without
+ * -DCLRT_SUBSAMPLE use only ASSUME_NOTHING and the guess that assumes
+ * nothing. */
 #ifndef CLRT_SUBSAMPLE_H
 #define CLRT_SUBSAMPLE_H
 
@@ -79,7 +81,7 @@ CLRT_INLINE lint assumed_intersection(const vec3* O, const vec3* D, real tmin, l
 }
 #endif
 
-/* What pass 1 takes from the neighbours, per lane: the primitive to assume
+/* What a pixel takes from its neighbours, per lane: the primitive to assume
  * (a primitive id, -1: both neighbours missed, or ASSUME_NOTHING), and with
  * interpolation the lanes that trace their ray at all, and the others'
  * mean colour and shadow mask. */
@@ -93,16 +95,19 @@ typedef struct subsample_guess {
 } subsample_guess;
 
 #if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
-/* Shade's pass 0: the camera hits of the block's pixels (the one ray
- * through (x, y), as trace_camera_ray() casts it), stored for pass 1 with
- * the tests they took. */
-CLRT_INLINE void store_camera_hits(const pixel_block* block, const camera_view* view, const lint x, const lint y,
-                                   const scene_data* scene, __global int* classes,
-                                   __global clrt_ray_counts* counters) {
-  const vec3 D = canvas_direction(view, TO_LREAL(x), TO_LREAL(y));
+/* Shade's first launch (camera_hits): the camera hits of the block's pixels
+ * in a tile at image column x0 and row y0 (the one ray through each
+ * pixel, as trace_camera_ray() casts it), stored for render with the tests
+ * they took. */
+CLRT_INLINE void store_camera_hits(const pixel_block* block, const int x0, const int y0, const scene_data* scene,
+                                   __global int* classes, __global clrt_ray_counts* counters) {
+  const camera_view view = camera_of(scene->params);
+  lint x, y;
+  canvas_point(&view, x0 + lanes_tile_x(block), y0 + lanes_tile_y(block), &x, &y);
+  const vec3 D = canvas_direction(&view, TO_LREAL(x), TO_LREAL(y));
   lreal t;
   lint tests = 0;
-  const lint hit = closest_intersection(&view->origin, &D, 1, REAL_INFINITY, (lint)-1, scene, &t, &tests);
+  const lint hit = closest_intersection(&view.origin, &D, 1, REAL_INFINITY, (lint)-1, scene, &t, &tests);
 #if CLRT_LANES == 1
   int hits[1] = {hit}, searched[1] = {tests};
 #else
@@ -115,20 +120,21 @@ CLRT_INLINE void store_camera_hits(const pixel_block* block, const camera_view* 
     const int idx = lane_tile_y(block, j) * block->tile_w + lane_tile_x(block, j);
     classes[idx * 2] = hits[j];
 #ifdef CLRT_COUNT_RAYS
-    counters[idx].sphere_tests = searched[j]; /* pass 1 adds its own */
+    counters[idx].sphere_tests = searched[j]; /* render adds its own */
 #endif
   }
 }
 #endif
 
-/* The guess of launch `pass`: in pass 1, the primitive both neighbours of
- * an odd column hit (pass 0 stored their hit ids in classes, and with
- * interpolation their colours in colours), where both exist in the tile
- * (the host gives whole rows, so only the image's last column lacks one);
- * with shade, an even column's own hit. Lanes past the tile's edge assume a
- * miss: no work, never stored. Elsewhere nothing is assumed and every lane
- * traces. */
-CLRT_INLINE subsample_guess guess_from_neighbours(const pixel_block* block, const int x0, const int pass,
+/* The guess of each lane's pixel: in an odd column, the primitive both its
+ * neighbours hit (the first launch stored their hit ids in classes, and
+ * with interpolation their colours in colours), where both exist in the
+ * tile (the host gives whole rows, so only the image's last column lacks
+ * one); in an even column, with shade, its own hit, with interpolation
+ * nothing (it is traced). Lanes past the tile's edge assume a miss: no
+ * work, never stored. Without subsampling nothing is assumed and every
+ * lane traces. */
+CLRT_INLINE subsample_guess guess_from_neighbours(const pixel_block* block, const int x0,
                                                   __global const int* classes, __global const CANVAS_T* colors) {
   subsample_guess guess;
   guess.assumed = ASSUME_NOTHING;
@@ -138,7 +144,6 @@ CLRT_INLINE subsample_guess guess_from_neighbours(const pixel_block* block, cons
   guess.interpolated_shadow = 0;
 #endif
 #if CLRT_SUBSAMPLE
-  if (pass != 1) return guess;
   const int tile_w = block->tile_w;
   int neighbours[CLRT_LANES];
 #if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_INTERPOLATE
@@ -153,13 +158,13 @@ CLRT_INLINE subsample_guess guess_from_neighbours(const pixel_block* block, cons
     shadow_both[j] = 0;
 #endif
     if (jx >= tile_w || jy >= block->tile_h) continue;
+    neighbours[j] = ASSUME_NOTHING;
+    if (((x0 + jx) & 1) == 0) { /* an even column */
 #if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
-    if (((x0 + jx) & 1) == 0) {
-      neighbours[j] = classes[(jy * tile_w + jx) * 2]; /* found by pass 0's search */
+      neighbours[j] = classes[(jy * tile_w + jx) * 2]; /* found by camera_hits' search */
+#endif
       continue;
     }
-#endif
-    neighbours[j] = ASSUME_NOTHING;
     if (jx < 1 || jx + 1 >= tile_w) continue;
     const int left = jy * tile_w + jx - 1, right = left + 2;
     if (classes[left * 2] != classes[right * 2]) continue;

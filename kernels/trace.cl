@@ -5,12 +5,12 @@
  * entry points only: what a launch does, in order, each step a call into the
  * part that owns it.
  *
- * A tile is one launch of `render`, or with subsampling (-DCLRT_SUBSAMPLE,
- * clrt_subsample.h) a launch of `subsample_first` then one of
- * `subsample_second`. Each entry point is the one body with its launch's
- * number a constant, so that each compiles only what its launch does; a
- * program defines only the entry points its host launches (PoCL compiles
- * each on its own).
+ * A tile is one launch of `render` over its columns. With subsampling
+ * (-DCLRT_SUBSAMPLE, clrt_subsample.h) it is two: interpolate launches
+ * `render` over the even columns, then over the odd ones (one entry point:
+ * PoCL compiles each on its own, and both launches shade); shade launches
+ * `camera_hits` over the even columns, then `render` over all. A program
+ * defines only the entry points its host launches.
  *
  * The parts, each included once (host/cl/kernel_source.cpp expands them):
  *   clrt_layout.h       structs and codes shared with the host
@@ -43,24 +43,19 @@
 #include "clrt_samples.h"
 #include "clrt_subsample.h"
 
-/* Launch `pass` of a tile: 0, or subsampling's second launch 1. */
-CLRT_INLINE void render_launch(const int pass, CLRT_RENDER_PARAMS) {
-  const pixel_block block = block_of((int)get_global_id(0), (int)get_global_id(1), x0, tile_w, tile_h, pass);
+/* Shades the block's pixels of a tile launch (the columns of first_column
+ * and column_step: every column of the tile, or with subsampling one parity
+ * of them, clrt_subsample.h). */
+__kernel void render(CLRT_RENDER_PARAMS) {
+  const pixel_block block =
+      block_of((int)get_global_id(0), (int)get_global_id(1), first_column, column_step, tile_w, tile_h);
   if (!block_in_tile(&block)) return;
   const scene_data scene = {params, spheres, lights, nodes, primitives, planes, triangles, materials};
   const camera_view view = camera_of(params);
   /* the canvas point of each lane's pixel */
   lint x, y;
   canvas_point(&view, x0 + lanes_tile_x(&block), y0 + lanes_tile_y(&block), &x, &y);
-
-#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
-  if (pass == 0) {
-    store_camera_hits(&block, &view, x, y, &scene, classes, counters);
-    CHECK_LOOP_LIMIT(params, status);
-    return;
-  }
-#endif
-  const subsample_guess guess = guess_from_neighbours(&block, x0, pass, classes, colors);
+  const subsample_guess guess = guess_from_neighbours(&block, x0, classes, colors);
 
   const ray_tree_settings settings = ray_tree_settings_of(params);
   lint hit_id = -1, shadow_mask = 0;
@@ -79,15 +74,15 @@ CLRT_INLINE void render_launch(const int pass, CLRT_RENDER_PARAMS) {
   CHECK_LOOP_LIMIT(params, status);
 }
 
-#if !CLRT_SUBSAMPLE
-__kernel void render(CLRT_RENDER_PARAMS) {
-  render_launch(0, CLRT_RENDER_ARGUMENTS);
-}
-#else
-__kernel void subsample_first(CLRT_RENDER_PARAMS) {
-  render_launch(0, CLRT_RENDER_ARGUMENTS);
-}
-__kernel void subsample_second(CLRT_RENDER_PARAMS) {
-  render_launch(1, CLRT_RENDER_ARGUMENTS);
+#if CLRT_SUBSAMPLE == CLRT_SUBSAMPLE_SHADE
+/* Shade's first launch: the camera hits of the even columns, which render
+ * then shades and its odd columns assume (clrt_subsample.h). */
+__kernel void camera_hits(CLRT_RENDER_PARAMS) {
+  const pixel_block block =
+      block_of((int)get_global_id(0), (int)get_global_id(1), first_column, column_step, tile_w, tile_h);
+  if (!block_in_tile(&block)) return;
+  const scene_data scene = {params, spheres, lights, nodes, primitives, planes, triangles, materials};
+  store_camera_hits(&block, x0, y0, &scene, classes, counters);
+  CHECK_LOOP_LIMIT(params, status);
 }
 #endif

@@ -91,7 +91,7 @@ void DeviceRenderer::use_program(const std::string& opts) {
   BuildStats bs;
   BuiltProgram built;
   built.program = build_program(context_, device_, source_, opts, &bs, BuildFlags{config_.use_cache, config_.verbose});
-  for (const std::string& name : render_kernel_names(config_.subsample != Subsample::Off)) {
+  for (const std::string& name : render_kernel_names(config_.subsample == Subsample::Shade)) {
     cl::Kernel kernel(built.program, name.c_str());
     // The kernels' parameters and the host's RenderArg come from one list
     // (kernels/clrt_kernel_args.h); a kernel file from elsewhere
@@ -281,9 +281,7 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
   for (cl::Kernel& kernel : built_.kernels) set_tile_args(kernel, slot, x0, y0, w, h);
   if (config_.loop_limit_probe) queue_.enqueueFillBuffer(slot.status, cl_int(0), 0, sizeof(cl_int));
   // Each work-item shades a block of kernel_lanes(config_) pixels,
-  // packet_rows(config_) of them high. With subsampling a tile is two
-  // launches (kernels/clrt_subsample.h): the ones that take every other column
-  // cover at most (w + 1) / 2 columns.
+  // packet_rows(config_) of them high.
   const size_t rows = size_t(packet_rows(config_)), cols = size_t(kernel_lanes(config_)) / rows;
   // Always an explicit local size: with NullRange the implementation picks
   // one from the global size, which changes with every band height, and
@@ -302,16 +300,37 @@ void DeviceRenderer::enqueue_tile(int x0, int y0, int w, int h, Image& dst) {
     if (global_x < gw || global_y < gh) throw std::logic_error("launch does not cover the tile");
     return cl::NDRange(global_x, global_y);
   };
-  const size_t every_other = (size_t(w) + 1) / 2;
-  const Subsample mode = config_.subsample;
-  const std::vector<cl::Kernel>& kernels = built_.kernels;
-  tile.launch = start_timed(queue_, kernels[0], global_for(mode == Subsample::Off ? size_t(w) : every_other), local);
-  if (mode != Subsample::Off) {
-    // The second launch after the first (an in-order queue): timed as one
-    // launch, from the first's start to the second's end. Shade's second
-    // launch shades every column, interpolate's the odd ones.
-    tile.launch = start_timed_after(tile.launch, queue_, kernels[1],
-                                    global_for(mode == Subsample::Shade ? size_t(w) : every_other), local);
+  // The launches: render over every column, or subsampling's two
+  // (kernels/clrt_subsample.h), each over one parity of the image's columns
+  // (a tile column c is image column x0 + c) but shade's second, which
+  // shades them all. The second runs after the first (an in-order queue);
+  // the tile is timed from the first's start to the last's end.
+  struct Launch {
+    cl::Kernel* kernel;
+    int first_column, column_step;
+  };
+  const int even = x0 & 1, odd = (x0 + 1) & 1;        // the first tile columns of even and odd image columns
+  std::vector<cl::Kernel>& kernels = built_.kernels;  // render_kernel_names()
+  const std::vector<Launch> launches = [&]() -> std::vector<Launch> {
+    switch (config_.subsample) {
+      case Subsample::Shade:
+        return {{&kernels[0], even, 2}, {&kernels[1], 0, 1}};
+      case Subsample::Interpolate:
+        return {{&kernels[0], even, 2}, {&kernels[0], odd, 2}};
+      case Subsample::Off:
+        break;
+    }
+    return {{&kernels[0], 0, 1}};
+  }();
+  for (size_t k = 0; k < launches.size(); ++k) {
+    const Launch& launch = launches[k];
+    set_arg<RenderArg::first_column>(*launch.kernel, cl_int(launch.first_column));
+    set_arg<RenderArg::column_step>(*launch.kernel, cl_int(launch.column_step));
+    // Every other column: at most (w + 1) / 2, one global size for both
+    // parities (the kernel leaves out the work-items past the tile).
+    const size_t columns = (size_t(w) + size_t(launch.column_step) - 1) / size_t(launch.column_step);
+    tile.launch = k == 0 ? start_timed(queue_, *launch.kernel, global_for(columns), local)
+                         : start_timed_after(tile.launch, queue_, *launch.kernel, global_for(columns), local);
   }
 
   if (!map_results_) enqueue_reads(tile, slot, dst);

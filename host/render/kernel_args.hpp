@@ -14,11 +14,11 @@
 
 namespace clrt {
 
-// The entry points a tile launches, in order (kernels/trace.cl): one launch
-// of render, or subsampling's two. A program defines only its own, and all
-// of them take the same arguments.
-inline std::vector<std::string> render_kernel_names(bool subsample) {
-  if (subsample) return {"subsample_first", "subsample_second"};
+// The entry points a program defines (kernels/trace.cl): render, and with
+// shade subsampling camera_hits too, its first launch. All of them take the
+// same arguments.
+inline std::vector<std::string> render_kernel_names(bool shade_subsampling) {
+  if (shade_subsampling) return {"camera_hits", "render"};
   return {"render"};
 }
 

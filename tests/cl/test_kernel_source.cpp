@@ -77,7 +77,7 @@ TEST_CASE("trace.cl is its parts, each once", "[kernel_source]") {
     INFO(part);
     CHECK(count(text, "#line 1 \"" + part + "\"\n") == 1);
   }
-  for (const char* kernel : {"render", "subsample_first", "subsample_second"})
+  for (const char* kernel : {"render", "camera_hits"})
     CHECK(count(text, std::string("__kernel void ") + kernel + "(") == 1);
   // The layout probe sees the same shared header.
   CHECK(count(load_kernel_source("layout_probe.cl"), "#line 1 \"clrt_layout.h\"\n") == 1);

@@ -26,9 +26,11 @@ TEST_CASE("every built render kernel takes the host's list of arguments, by name
   const cl::Context ctx(dev.device);
   const Scene scene = clrt_test::load("scenes/cgfs-demo.json");
   const std::string source = load_kernel_source("trace.cl");
-  // Without layers, with them, and with subsampling's two entry points.
+  // Without layers, with them, and with each subsampling mode (shade's
+  // program has a second entry point).
   for (const auto& [layers, subsample] :
-       {std::pair{false, Subsample::Off}, std::pair{true, Subsample::Off}, std::pair{false, Subsample::Interpolate}}) {
+       {std::pair{false, Subsample::Off}, std::pair{true, Subsample::Off}, std::pair{false, Subsample::Shade},
+        std::pair{false, Subsample::Interpolate}}) {
     INFO("layers " << layers << ", subsample " << int(subsample));
     KernelConfig cfg;
     cfg.specialize = false;  // (the generic program: the quickest to build)
@@ -38,7 +40,7 @@ TEST_CASE("every built render kernel takes the host's list of arguments, by name
     // Not through the cache: a cached binary need not keep the argument info.
     const std::string options = build_options(cfg, scene, 3, dev.fp64) + " -cl-kernel-arg-info";
     const cl::Program program = build_program(ctx, dev, source, options, nullptr, BuildFlags{false, false});
-    const std::vector<std::string> names = render_kernel_names(subsample != Subsample::Off);
+    const std::vector<std::string> names = render_kernel_names(subsample == Subsample::Shade);
     // The program defines these entry points and no other.
     CHECK(program.getInfo<CL_PROGRAM_NUM_KERNELS>() == names.size());
     for (const std::string& kernel_name : names) {
