@@ -305,12 +305,14 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
                                   const scene_data* scene, lint* tests) {
   __global const clrt_wide_node* nodes = scene->nodes;
   const vec3 inverse = inverse_direction(D);
-  lint blocked = 0;
-#if CLRT_HAS_PLANES
-  blocked = any_flat(O, D, tmin, tmax, self, active, scene, 0, tests);
-#endif
 #if CLRT_HAS_TRIANGLES
   const ray_shear shear = shear_of(D);
+#endif
+  /* planes first, as the closest-hit walk: one may block every lane */
+#if CLRT_HAS_PLANES
+  lint blocked = any_flat(O, D, tmin, tmax, self, active, scene, 0, tests);
+#else
+  lint blocked = 0;
 #endif
   int stack[CLRT_BVH_STACK];
   real stack_enter[CLRT_BVH_STACK];

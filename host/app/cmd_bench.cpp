@@ -36,14 +36,7 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--float", *float_frames,
                 "Time frames of float colour (what .exr outputs get) instead of 8-bit RGBA (.png and other 8-bit "
                 "outputs); the OpenMP and Embree tracers write the same format");
-  cmd->add_flag("--no-map", *no_map,
-                "Read the results into host memory even where the device could map them (the path of discrete "
-                "devices)")
-      ->group(kDeveloperGroup);
-  cmd->add_flag("--no-overlap", *no_overlap,
-                "Where results are read, one band at a time (without it, a band's results travel while the next "
-                "band's kernel runs)")
-      ->group(kDeveloperGroup);
+  add_transfer_flags(cmd, *no_map, *no_overlap);
   cmd->callback([o, repeat, as_json, no_omp, no_embree, no_reference, float_frames, no_map, no_overlap] {
     o->validate();
     Scene scene = o->image.load_scene(o->scene_path);

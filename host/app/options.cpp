@@ -128,10 +128,11 @@ void DeviceOptions::add(CLI::App* cmd, bool several) {
 void KernelOptions::add(CLI::App* cmd, bool with_variant, bool with_specialize) {
   if (with_variant) {
     cmd->add_option("--precision", precision, "naive | stable | robust | fast | fp64")->capture_default_str();
-    cmd->add_option("--lanes", lanes,
-                    "Pixels per work-item (SIMD lanes): 1, 4, 8, 16; unset: 16 on CPUs with 16-wide floats, else 8, "
-                    "for specialized float builds on CPUs (where a hierarchy is walked: that or 1, whichever a short timed "
-                    "probe on the scene finds faster); 1 on GPUs, on llvmpipe (rusticl), for generic and fp64 builds")
+    cmd->add_option(
+           "--lanes", lanes,
+           "Pixels per work-item (SIMD lanes): 1, 4, 8, 16; unset: 16 on CPUs with 16-wide floats, else 8, "
+           "for specialized float builds on CPUs (where a hierarchy is walked: that or 1, whichever a short timed "
+           "probe on the scene finds faster); 1 on GPUs, on llvmpipe (rusticl), for generic and fp64 builds")
         ->group(kDeveloperGroup);
   }
   if (with_specialize)
@@ -260,6 +261,17 @@ void add_aov_option(CLI::App* cmd, std::string& aov) {
           return std::string(e.what());
         }
       });
+}
+
+void add_transfer_flags(CLI::App* cmd, bool& no_map, bool& no_overlap) {
+  cmd->add_flag("--no-map", no_map,
+                "Read the results into host memory even where the device could map them (the path of discrete "
+                "devices)")
+      ->group(kDeveloperGroup);
+  cmd->add_flag("--no-overlap", no_overlap,
+                "Where results are read, one band at a time (without it, a band's results travel while the next "
+                "band's kernel runs)")
+      ->group(kDeveloperGroup);
 }
 
 void add_repeat_option(CLI::App* cmd, int& repeat, const std::string& help) {

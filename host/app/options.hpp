@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "cl/device.hpp"
-#include "image/layers.hpp"
 #include "eval/accuracy.hpp"
 #include "eval/sweep.hpp"
+#include "image/layers.hpp"
 #include "render/renderer.hpp"
 #include "scene/ray_tree.hpp"
 #include "scene/sampling.hpp"
@@ -135,6 +135,11 @@ void add_override_option(CLI::App* cmd, std::vector<std::string>& overrides);
 // --aov LIST (render, compare): the AOV layers (image/layers.hpp) into
 // `aov`, checked by parse_layers() as CLI11 reads it.
 void add_aov_option(CLI::App* cmd, std::string& aov);
+
+// --no-map and --no-overlap (bench; developer options): how a frame's
+// results travel to the host (DeviceRenderer: mapped or read, and read
+// while the next band runs or one band at a time).
+void add_transfer_flags(CLI::App* cmd, bool& no_map, bool& no_overlap);
 
 // --repeat N: timed runs, in [1, kMaxRepeat].
 constexpr int kMaxRepeat = 1000;

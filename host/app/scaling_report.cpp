@@ -9,6 +9,7 @@
 #include "image/plot.hpp"
 #include "util/csv.hpp"
 #include "util/output_file.hpp"
+#include "util/stats.hpp"
 
 namespace clrt {
 
@@ -34,22 +35,20 @@ std::string scaling_csv(const std::vector<ScalingRow>& rows) {
     t.set_number("depth", b.depth);
     t.set_number("rays_total", b.rays.total());
     t.set_number("sphere_tests", b.rays.sphere_tests);
-    t.set_number("frame_ms_median", b.frame.median);
-    t.set_number("frame_ms_mean", b.frame.mean);
-    t.set_number("frame_ms_sd", b.frame.sd);
+    // A timing's median, mean and sd, named by stats_columns()'s rule.
+    const auto set_spread = [&t](const std::string& prefix, const Stats& s) {
+      for (const auto& [name, value] : stats_columns(prefix, s, {"median", "mean", "sd"})) t.set_number(name, value);
+    };
+    set_spread("frame_ms", b.frame);
     t.set_number("frame_n", b.frame.n);
     t.set_number("kernel_ms_median", b.kernel.median);
     t.set("kernel_time_source", b.kernel_time_source());
     t.set_number("ns_per_ray", r.ns_per_ray);
-    t.set_number("embree_ms_median", b.embree.median);
-    t.set_number("embree_ms_mean", b.embree.mean);
-    t.set_number("embree_ms_sd", b.embree.sd);
+    set_spread("embree_ms", b.embree);
     t.set_number("embree_n", b.embree.n);
     t.set_number("embree_build_ms", b.embree_build_ms);
     t.set_number("embree_ns_per_ray", r.embree_ns_per_ray);
-    t.set_number("speedup_vs_embree_median", b.speedup_vs_embree.median);
-    t.set_number("speedup_vs_embree_mean", b.speedup_vs_embree.mean);
-    t.set_number("speedup_vs_embree_sd", b.speedup_vs_embree.sd);
+    set_spread("speedup_vs_embree", b.speedup_vs_embree);
     t.set_number("load_peak_bytes", r.load.peak_bytes);
     t.set_number("resident_bytes", r.resident_bytes);
     t.set_number("prepare_ms", r.prepare.ms);

@@ -11,45 +11,46 @@
 #include "cl/launch_timing.hpp"
 #include "image/plot.hpp"
 #include "util/csv.hpp"
-
 #include "util/output_file.hpp"
+#include "util/stats.hpp"
 
 namespace clrt {
 
 namespace {
 
+using Figures = std::vector<std::pair<std::string, nlohmann::ordered_json>>;
+
+// Appends a timing's columns, named by stats_columns()'s rule.
+void add_stats(Figures& f, const std::string& prefix, const Stats& s, const std::vector<std::string>& fields) {
+  for (const auto& [name, value] : stats_columns(prefix, s, fields)) f.emplace_back(name, value);
+}
+
 // The figures of one row, by name (one list for the CSV and the JSON).
-std::vector<std::pair<std::string, nlohmann::ordered_json>> sweep_figures(const SweepRow& r) {
+Figures sweep_figures(const SweepRow& r) {
   const BenchResult& b = r.bench;
-  return {{"device", r.device},
-          {"depth", r.depth},
-          {"kernel_ms_median", b.kernel.median},
-          {"kernel_ms_min", b.kernel.min},
-          {"kernel_ms_max", b.kernel.max},
-          {"kernel_ms_mean", b.kernel.mean},
-          {"kernel_ms_sd", b.kernel.sd},
-          {"kernel_n", b.kernel.n},
-          {"kernel_time_source", b.kernel_time_source()},
-          {"kernel_ms_delta", r.kernel_ms_delta},
-          {"frame_ms_median", b.frame.median},
-          {"frame_ms_mean", b.frame.mean},
-          {"frame_ms_sd", b.frame.sd},
-          {"build_warm_ms", b.build_warm.median},
-          {"upload_ms", b.upload.median},
-          {"download_ms", b.download.median},
-          {"rays_primary", b.rays.primary},
-          {"rays_shadow", b.rays.shadow},
-          {"rays_reflection", b.rays.reflection},
-          {"rays_refraction", b.rays.refraction},
-          {"rays_total", b.rays.total()},
-          {"sphere_tests", b.rays.sphere_tests},
-          {"mrays_per_s", b.mrays_per_s},
-          {"ns_per_sphere_test", b.ns_per_sphere_test},
-          {"gflops", b.gflops},
-          {"reference_ms", r.reference_ms},
-          {"speedup_vs_reference", r.speedup_vs_reference},
-          {"omp_ms_median", b.omp.median},
-          {"opencl_speedup_vs_omp", b.speedup_vs_omp.median}};
+  Figures f{{"device", r.device}, {"depth", r.depth}};
+  add_stats(f, "kernel_ms", b.kernel, {"median", "min", "max", "mean", "sd"});
+  f.insert(f.end(), {{"kernel_n", b.kernel.n},
+                     {"kernel_time_source", b.kernel_time_source()},
+                     {"kernel_ms_delta", r.kernel_ms_delta}});
+  add_stats(f, "frame_ms", b.frame, {"median", "mean", "sd"});
+  f.insert(f.end(), {{"build_warm_ms", b.build_warm.median},
+                     {"upload_ms", b.upload.median},
+                     {"download_ms", b.download.median},
+                     {"rays_primary", b.rays.primary},
+                     {"rays_shadow", b.rays.shadow},
+                     {"rays_reflection", b.rays.reflection},
+                     {"rays_refraction", b.rays.refraction},
+                     {"rays_total", b.rays.total()},
+                     {"sphere_tests", b.rays.sphere_tests},
+                     {"mrays_per_s", b.mrays_per_s},
+                     {"ns_per_sphere_test", b.ns_per_sphere_test},
+                     {"gflops", b.gflops},
+                     {"reference_ms", r.reference_ms},
+                     {"speedup_vs_reference", r.speedup_vs_reference},
+                     {"omp_ms_median", b.omp.median},
+                     {"opencl_speedup_vs_omp", b.speedup_vs_omp.median}});
+  return f;
 }
 
 }  // namespace
@@ -101,19 +102,20 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepRow>& rows, const std::
 }
 
 void print_sweep(const std::vector<SweepRow>& rows) {
-  std::fprintf(report_stream(), "%-5s %10s %9s %12s %9s %9s %9s %8s %7s %8s %9s %9s  %s\n", "depth", "kernel_ms", "delta_ms", "rays",
-              "Mrays/s", "ref_ms", "vs_ref", "differ", "off>1", "rmse", "changed", "chg_rmse", "device");
+  std::fprintf(report_stream(), "%-5s %10s %9s %12s %9s %9s %9s %8s %7s %8s %9s %9s  %s\n", "depth", "kernel_ms",
+               "delta_ms", "rays", "Mrays/s", "ref_ms", "vs_ref", "differ", "off>1", "rmse", "changed", "chg_rmse",
+               "device");
   for (const auto& r : rows) {
     const BenchResult& b = r.bench;
-    std::fprintf(report_stream(), "%-5d %10.2f %+9.2f %12llu %9.1f %9.1f %8.1fx %8zu %7zu %8.4f %9zu %9.4f  %s\n", r.depth,
-                b.kernel.median, r.kernel_ms_delta, (unsigned long long)b.rays.total(), b.mrays_per_s, r.reference_ms,
-                r.speedup_vs_reference, r.error.differ, r.error.off_by_gt1, r.error.rmse_8bit, r.change.differ,
-                r.change.rmse_8bit, r.device.c_str());
+    std::fprintf(report_stream(), "%-5d %10.2f %+9.2f %12llu %9.1f %9.1f %8.1fx %8zu %7zu %8.4f %9zu %9.4f  %s\n",
+                 r.depth, b.kernel.median, r.kernel_ms_delta, (unsigned long long)b.rays.total(), b.mrays_per_s,
+                 r.reference_ms, r.speedup_vs_reference, r.error.differ, r.error.off_by_gt1, r.error.rmse_8bit,
+                 r.change.differ, r.change.rmse_8bit, r.device.c_str());
   }
   for (const auto& r : rows)
     if (r.bench.host_timed_launches) {
       std::fprintf(report_stream(), "kernel_ms of %s%s\n", r.device.c_str(),
-                  time_source_note(r.bench.host_timed_launches, r.bench.launches).c_str());
+                   time_source_note(r.bench.host_timed_launches, r.bench.launches).c_str());
       break;
     }
 }

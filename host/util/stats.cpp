@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace clrt {
 
@@ -36,6 +37,21 @@ nlohmann::json stats_json(const Stats& s, const std::string& unit) {
   const std::string u = "_" + unit;
   return {{"n", s.n},       {"median" + u, s.median}, {"mean" + u, s.mean},
           {"sd" + u, s.sd}, {"min" + u, s.min},       {"max" + u, s.max}};
+}
+
+std::vector<std::pair<std::string, double>> stats_columns(const std::string& prefix, const Stats& s,
+                                                          const std::vector<std::string>& fields) {
+  std::vector<std::pair<std::string, double>> columns;
+  for (const std::string& field : fields) {
+    const double value = field == "median" ? s.median
+                         : field == "min"  ? s.min
+                         : field == "max"  ? s.max
+                         : field == "mean" ? s.mean
+                         : field == "sd"   ? s.sd
+                                           : throw std::invalid_argument("stats_columns: no field " + field);
+    columns.emplace_back(prefix + "_" + field, value);
+  }
+  return columns;
 }
 
 std::string format_stats(const Stats& s, const char* unit, int decimals) {
