@@ -69,6 +69,11 @@ bool cache_begin_load(const ProgramCacheKey& key, std::string* note) {
   const long other = read_marker_pid(dir.fd, marker);
   if (other <= 0) return false;            // not a marker this user wrote: build from source
   if (process_alive(other)) return false;  // being loaded right now: build from source
+  // A marker read just before its process finished normally (it removes the
+  // marker, then may exit before the check above) names a process that is
+  // gone too: only a marker still there with the same pid is a crash's
+  // (found under load: six processes loading one entry, one exiting).
+  if (read_marker_pid(dir.fd, marker) != other) return false;
   // The process that loaded this entry last did not finish: it crashed in
   // the driver. Never load this entry again (the mark is created, never
   // opened through whatever may have its name).
