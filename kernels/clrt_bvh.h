@@ -5,9 +5,10 @@
  * other builds). Same answers as those loops, lane by lane:
  *  - a child is entered when any lane's ray may meet its box inside that
  *    lane's interval; every primitive the loops would test and could win is
- *    in such a child (boxes are padded on the host beyond every rounding of
- *    the primitive tests, and the slab test below widens its interval by
- *    far more than its own rounding);
+ *    in such a child (boxes are padded beyond every rounding of the
+ *    primitive tests: on the host for the primitive's share, here for the
+ *    ray origin's, padded_origins(); and the slab test below widens its
+ *    interval by far more than its own rounding);
  *  - a child is dropped only when its widened entry distance is beyond every
  *    lane's closest hit so far (strictly: a primitive at the same distance
  *    may still win the tie);
@@ -48,13 +49,39 @@ CLRT_INLINE vec3 inverse_direction(const vec3* D) {
 #define BMIN(a, b) ((a) < (b) ? (a) : (b))
 #define BMAX(a, b) ((a) > (b) ? (a) : (b))
 
+/* The ray's share of the boxes' padding (clrt_layout.h, CLRT_BVH_PAD_*):
+ * the lower planes tested from O + p, the upper ones from O - p, is the box
+ * widened by p on every side, p = pad x max|O|, at no cost per node. (The
+ * rounding of O +- p, 2^-24 max|O|, is far inside p.) */
+#if CLRT_PRECISION == CLRT_PRECISION_FP64
+#define CLRT_RAY_PAD ((real)CLRT_BVH_PAD_FP64)
+#elif CLRT_PRECISION == CLRT_PRECISION_FAST
+#define CLRT_RAY_PAD ((real)CLRT_BVH_PAD_FAST)
+#else
+#define CLRT_RAY_PAD ((real)CLRT_BVH_PAD_FLOAT)
+#endif
+typedef struct box_origins {
+  vec3 lower, upper; /* where the lower and upper planes are seen from */
+} box_origins;
+
+CLRT_INLINE box_origins padded_origins(const vec3* O) {
+  const lreal p = BMAX(BMAX(fabs((*O).x), fabs((*O).y)), fabs((*O).z)) * CLRT_RAY_PAD;
+  box_origins out;
+  out.lower = v3((*O).x + p, (*O).y + p, (*O).z + p);
+  out.upper = v3((*O).x - p, (*O).y - p, (*O).z - p);
+  return out;
+}
+
 /* Lanes whose ray may meet child k's box within (tmin, limit); `enter`
  * gets their entry distances, widened by CLRT_BOX_SLACK like the exit. */
-CLRT_INLINE lint child_overlap(__global const clrt_wide_node* node, int k, const vec3* O, const vec3* inverse, real tmin,
-                               lreal limit, lreal* enter_out) {
-  const lreal x0 = ((real)node->lower[0][k] - (*O).x) * (*inverse).x, x1 = ((real)node->upper[0][k] - (*O).x) * (*inverse).x;
-  const lreal y0 = ((real)node->lower[1][k] - (*O).y) * (*inverse).y, y1 = ((real)node->upper[1][k] - (*O).y) * (*inverse).y;
-  const lreal z0 = ((real)node->lower[2][k] - (*O).z) * (*inverse).z, z1 = ((real)node->upper[2][k] - (*O).z) * (*inverse).z;
+CLRT_INLINE lint child_overlap(__global const clrt_wide_node* node, int k, const box_origins* O, const vec3* inverse,
+                               real tmin, lreal limit, lreal* enter_out) {
+  const lreal x0 = ((real)node->lower[0][k] - O->lower.x) * (*inverse).x;
+  const lreal x1 = ((real)node->upper[0][k] - O->upper.x) * (*inverse).x;
+  const lreal y0 = ((real)node->lower[1][k] - O->lower.y) * (*inverse).y;
+  const lreal y1 = ((real)node->upper[1][k] - O->upper.y) * (*inverse).y;
+  const lreal z0 = ((real)node->lower[2][k] - O->lower.z) * (*inverse).z;
+  const lreal z1 = ((real)node->upper[2][k] - O->upper.z) * (*inverse).z;
   lreal enter = BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMIN(z0, z1));
   lreal leave = BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMAX(z0, z1));
   const lreal slack = (fabs(enter) + fabs(leave)) * CLRT_BOX_SLACK;
@@ -105,14 +132,14 @@ typedef int8 wide_mask;
 
 /* The children whose box the ray may meet within (tmin, limit) (hit[k]
  * nonzero) and their widened entry distances. */
-CLRT_INLINE void node_children(__global const clrt_wide_node* node, const vec3* O, const vec3* inverse, real tmin,
-                               lreal limit, lint active, real* enter_out, int* hit_out) {
-  const wide_real x0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[0])) - (*O).x) * (*inverse).x;
-  const wide_real x1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[0])) - (*O).x) * (*inverse).x;
-  const wide_real y0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[1])) - (*O).y) * (*inverse).y;
-  const wide_real y1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[1])) - (*O).y) * (*inverse).y;
-  const wide_real z0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[2])) - (*O).z) * (*inverse).z;
-  const wide_real z1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[2])) - (*O).z) * (*inverse).z;
+CLRT_INLINE void node_children(__global const clrt_wide_node* node, const box_origins* O, const vec3* inverse,
+                               real tmin, lreal limit, lint active, real* enter_out, int* hit_out) {
+  const wide_real x0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[0])) - O->lower.x) * (*inverse).x;
+  const wide_real x1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[0])) - O->upper.x) * (*inverse).x;
+  const wide_real y0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[1])) - O->lower.y) * (*inverse).y;
+  const wide_real y1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[1])) - O->upper.y) * (*inverse).y;
+  const wide_real z0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[2])) - O->lower.z) * (*inverse).z;
+  const wide_real z1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[2])) - O->upper.z) * (*inverse).z;
   wide_real enter = BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMIN(z0, z1));
   wide_real leave = BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMAX(z0, z1));
   const wide_real slack = (fabs(enter) + fabs(leave)) * CLRT_BOX_SLACK;
@@ -142,8 +169,8 @@ CLRT_INLINE real lane_min_real(lreal x) {
 /* A block of rays, child after child: hit[k] when a lane of `active` may
  * meet child k's box within its interval; enter[k] the smallest widened
  * entry distance of those lanes. */
-CLRT_INLINE void node_children(__global const clrt_wide_node* node, const vec3* O, const vec3* inverse, real tmin,
-                               lreal limit, lint active, real* enter_out, int* hit_out) {
+CLRT_INLINE void node_children(__global const clrt_wide_node* node, const box_origins* O, const vec3* inverse,
+                               real tmin, lreal limit, lint active, real* enter_out, int* hit_out) {
   for (int k = 0; k < CLRT_BVH_WIDTH; ++k) {
     hit_out[k] = 0;
     if (node->count[k] == 0) continue;
@@ -175,7 +202,7 @@ CLRT_INLINE void push_sorted(int child, real enter, int base, int* stack, real* 
  * distance. Inner children are pushed as their node index, leaves as
  * ~(index * CLRT_BVH_WIDTH + slot): their entries are read only when popped
  * (leaf_entries()), and a leaf popped beyond the closest hit is never read. */
-CLRT_INLINE void push_children(__global const clrt_wide_node* nodes, int index, const vec3* O, const vec3* inverse,
+CLRT_INLINE void push_children(__global const clrt_wide_node* nodes, int index, const box_origins* O, const vec3* inverse,
                                real tmin, lreal limit, lint active, int* stack, real* stack_enter, int* top) {
   __global const clrt_wide_node* node = &nodes[index];
   real enter[CLRT_BVH_WIDTH];
@@ -264,6 +291,7 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
                                       const scene_data* scene, lreal* t_out, lint* tests) {
   __global const clrt_wide_node* nodes = scene->nodes;
   const vec3 inverse = inverse_direction(D);
+  const box_origins origins = padded_origins(O);
   lreal closest = REAL_INFINITY;
   lint best = -1;
 #if CLRT_HAS_PLANES
@@ -278,7 +306,8 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
   real stack_enter[CLRT_BVH_STACK];
   int top = 0, index = 0;
   for (;;) {
-    push_children(nodes, index, O, &inverse, tmin, BMIN(closest, (lreal)tmax), MASK_TRUE, stack, stack_enter, &top);
+    push_children(nodes, index, &origins, &inverse, tmin, BMIN(closest, (lreal)tmax), MASK_TRUE, stack, stack_enter,
+                  &top);
     /* the nearest child still worth a visit (beyond every lane's closest
      * hit, none is): leaves are tested on the way to it */
     index = -1;
@@ -305,6 +334,7 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
                                   const scene_data* scene, lint* tests) {
   __global const clrt_wide_node* nodes = scene->nodes;
   const vec3 inverse = inverse_direction(D);
+  const box_origins origins = padded_origins(O);
 #if CLRT_HAS_TRIANGLES
   const ray_shear shear = shear_of(D);
 #endif
@@ -322,7 +352,7 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
     if (!ANY(open)) break;
     /* nearest first, as the closest-hit walk: a blocker near the surface
      * (the usual one) is found before the far subtrees are walked */
-    push_children(nodes, index, O, &inverse, tmin, (lreal)tmax, open, stack, stack_enter, &top);
+    push_children(nodes, index, &origins, &inverse, tmin, (lreal)tmax, open, stack, stack_enter, &top);
     index = -1;
     while (top > 0) {
       --top;

@@ -179,6 +179,19 @@ typedef struct clrt_bvh_node {
   clrt_i32 count;
 } clrt_bvh_node; /* 32 bytes */
 
+/* The boxes' padding per precision variant, as a fraction of the scale of
+ * a test: a float primitive test errs by a few ulps of the distances it
+ * works with, which are at most |C| + r + |O| in each coordinate (C, r a
+ * primitive's centre or vertices and size, O the ray's origin, all relative
+ * to the packing origin). The host pads each primitive's box by the factor
+ * times max|C| + r; the walk widens every box by the factor times max|O| for
+ * the ray at hand (kernels/clrt_bvh.h). Fast: native square root and
+ * division, whose accuracy the device chooses (2^-11); fp64: 2^-40; the
+ * others 2^-16, thousands of ulps of float. (host/render/bvh.hpp) */
+#define CLRT_BVH_PAD_FLOAT 0x1p-16
+#define CLRT_BVH_PAD_FAST 0x1p-11
+#define CLRT_BVH_PAD_FP64 0x1p-40
+
 /* Primitive list entries: the primitive's kind in the top bits, its index in
  * the scene's list of that kind below. Planes are never in the hierarchy
  * (unbounded). A hit is reported as one id over all primitives: spheres

@@ -265,16 +265,11 @@ class Builder {
 
 }  // namespace
 
-Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads) {
-  const Doing doing("building the hierarchy of " + std::to_string(scene.spheres.size()) + " spheres and " +
-                    std::to_string(scene.triangles.size()) + " triangles");
-  if (scene.spheres.size() > size_t(CLRT_PRIMITIVE_INDEX_MASK))
-    throw UserError("scene has " + std::to_string(scene.spheres.size()) + " spheres; the hierarchy holds at most " +
-                    std::to_string(CLRT_PRIMITIVE_INDEX_MASK));
-  if (scene.triangles.size() > size_t(CLRT_PRIMITIVE_INDEX_MASK))
-    throw UserError("scene has " + std::to_string(scene.triangles.size()) + " triangles; the hierarchy holds at most " +
-                    std::to_string(CLRT_PRIMITIVE_INDEX_MASK));
-  // The scene's extent, camera included: the distance scale of every ray.
+namespace {
+
+// The scene's extent relative to `origin`, camera included: the largest
+// coordinate of any point a ray may start from or reach.
+double scene_extent(const Scene& scene, Vec3 origin) {
   const Vec3 eye = scene.camera.position - origin;
   double extent = std::max({std::fabs(eye.x), std::fabs(eye.y), std::fabs(eye.z)});
   for (const Sphere& s : scene.spheres) {
@@ -286,17 +281,43 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
       const Vec3 c = v - origin;
       extent = std::max({extent, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
     }
+  return extent;
+}
+
+}  // namespace
+
+double bvh_padding_scale(Precision precision) {
+  switch (precision) {
+    case Precision::Fp64:
+      return CLRT_BVH_PAD_FP64;
+    case Precision::Fast:
+      return CLRT_BVH_PAD_FAST;
+    default:
+      return CLRT_BVH_PAD_FLOAT;
+  }
+}
+
+Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads) {
+  const Doing doing("building the hierarchy of " + std::to_string(scene.spheres.size()) + " spheres and " +
+                    std::to_string(scene.triangles.size()) + " triangles");
+  if (scene.spheres.size() > size_t(CLRT_PRIMITIVE_INDEX_MASK))
+    throw UserError("scene has " + std::to_string(scene.spheres.size()) + " spheres; the hierarchy holds at most " +
+                    std::to_string(CLRT_PRIMITIVE_INDEX_MASK));
+  if (scene.triangles.size() > size_t(CLRT_PRIMITIVE_INDEX_MASK))
+    throw UserError("scene has " + std::to_string(scene.triangles.size()) + " triangles; the hierarchy holds at most " +
+                    std::to_string(CLRT_PRIMITIVE_INDEX_MASK));
+  // (naive's grazing hits scale with the extent, bvh.hpp)
+  const double extent = precision == Precision::Naive ? scene_extent(scene, origin) : 0;
   Bvh bvh;
-  const int padding_exponent = precision == Precision::Fp64 ? -40 : precision == Precision::Fast ? -12 : -16;
-  bvh.padding = std::ldexp(extent, padding_exponent);
+  bvh.padding_scale = bvh_padding_scale(precision);
   std::vector<Item> items(scene.spheres.size() + scene.triangles.size());
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const Sphere& s = scene.spheres[i];
     const Vec3 relative = s.center - origin;  // as pack_scene() computes it
     const std::array<double, 3> c{relative.x, relative.y, relative.z};
     // The naive variant's grazing hits, ~2^-22 E^2 / r from the sphere.
-    const double pad =
-        precision == Precision::Naive ? bvh.padding + std::ldexp(extent * extent / s.radius, -22) : bvh.padding;
+    const double own = bvh.padding_scale * (std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])}) + s.radius);
+    const double pad = precision == Precision::Naive ? own + std::ldexp(extent * extent / s.radius, -22) : own;
     // (each step rounded outward: the box holds the exact one)
     for (int a = 0; a < 3; ++a) {
       items[i].box.lower[a] = std::nextafter(std::nextafter(c[a] - s.radius, -kInfinity) - pad, -kInfinity);
@@ -318,12 +339,18 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
       item.box.lower[a] = kInfinity;
       item.box.upper[a] = -kInfinity;
     }
+    double largest = 0;
+    for (const Vec3& vertex : {t.v0, t.v1, t.v2}) {
+      const Vec3 c = vertex - origin;
+      largest = std::max({largest, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
+    }
+    const double pad = bvh.padding_scale * largest;
     for (const Vec3& vertex : {t.v0, t.v1, t.v2}) {
       const Vec3 relative = vertex - origin;
       const std::array<double, 3> c{relative.x, relative.y, relative.z};
       for (int a = 0; a < 3; ++a) {
-        item.box.lower[a] = std::min(item.box.lower[a], std::nextafter(c[a] - bvh.padding, -kInfinity));
-        item.box.upper[a] = std::max(item.box.upper[a], std::nextafter(c[a] + bvh.padding, kInfinity));
+        item.box.lower[a] = std::min(item.box.lower[a], std::nextafter(c[a] - pad, -kInfinity));
+        item.box.upper[a] = std::max(item.box.upper[a], std::nextafter(c[a] + pad, kInfinity));
         sum[a] += c[a];
       }
     }

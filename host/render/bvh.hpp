@@ -6,18 +6,28 @@
 // the kernel walks (wide_bvh.hpp).
 //
 // The boxes are padded and rounded outward so that the hierarchy never
-// changes which sphere a ray hits, at any precision variant
+// changes which primitive a ray hits, at any precision variant
 // (tests/render/test_bvh.cpp compares BVH and brute-force images). A float
-// sphere test can report a hit only for a ray that passes within its error
-// of the sphere; with E the scene's extent (camera included, the scale of
-// every ray's distance to a sphere):
-//  - stable, robust (perpendicular-distance discriminant): a few ulps of E,
-//    padded by 2^-16 E; fp64 by 2^-40 E;
+// sphere or triangle test can report a hit only for a ray that passes within
+// its error of the primitive, a few ulps of the distances it works with:
+// |O - C| and r, at most max|C| + r + max|O| in a coordinate (C, r the
+// centre and radius or the vertices, O the ray's origin, relative to the
+// packing origin). So each box is padded by a factor of max|C| + r here, and
+// the walk widens every box by the same factor of max|O| for each ray
+// (kernels/clrt_bvh.h), the factor per variant (CLRT_BVH_PAD_*,
+// clrt_layout.h):
+//  - stable, robust (perpendicular-distance discriminant): 2^-16, thousands
+//    of ulps; fp64 2^-40;
 //  - fast (native square root and division, whose accuracy the device
-//    chooses): padded by 2^-12 E;
+//    chooses): 2^-11;
 //  - naive (the book's b^2 - 4ac): a few ulps of |O - C|^2 in c, so grazing
-//    rays "hit" up to ~2^-22 E^2 / r away from a sphere of radius r: padded by
-//    that too. Its boxes are large; Accel::Auto keeps testing every sphere.
+//    rays "hit" up to ~2^-22 E^2 / r away from a sphere of radius r (E the
+//    scene's extent, camera included): padded by that too. Its boxes are
+//    large; Accel::Auto keeps testing every sphere.
+// Before, every box was padded by the factor of E: a scene with the book's
+// floor (radius 5 000) padded spheres of radius 0.01 near the camera by 0.08
+// (robust) or 1.2 (fast), and rays tested 1.4x (robust) and 22x (fast) the
+// spheres (docs/results/wide-hierarchy.md).
 #pragma once
 #include <cstddef>
 #include <string>
@@ -54,10 +64,13 @@ struct Bvh {
   std::vector<clrt_wide_node> wide;  // the same tree collapsed (wide_bvh.hpp): what the kernel walks
   std::vector<clrt_i32> primitives;  // the leaves' entries (kind << shift | index)
   int depth = 0;                     // deepest leaf of the binary tree, the root being 0
-  double padding = 0;                // added to every sphere's box, in scene units (naive: at least)
+  double padding_scale = 0;          // CLRT_BVH_PAD_*: a box is padded by this times max|C| + r (naive: more)
   // What the device holds: the wide nodes and the entries.
   size_t bytes() const { return wide.size() * sizeof(clrt_wide_node) + primitives.size() * sizeof(clrt_i32); }
 };
+
+// The factor of the boxes' padding for `precision` (CLRT_BVH_PAD_*).
+double bvh_padding_scale(Precision precision);
 
 // The hierarchy of `scene`'s spheres and triangles (empty scene: one empty
 // leaf; planes are never in it), in
