@@ -57,7 +57,7 @@ constexpr int kBvhLeafSize = 4;  // a leaf of more only where no split pays (or 
 // The largest leaf, whatever the SAH says (coincident primitives are split by
 // count); only the depth limit can make a larger one (2^47 leaves away).
 constexpr int kBvhMaxLeafSize = 4 * kBvhLeafSize;
-constexpr int kBvhBins = 16;     // SAH candidates per axis
+constexpr int kBvhBins = 16;  // SAH candidates per axis
 
 struct Bvh {
   std::vector<clrt_bvh_node> nodes;  // the binary tree; nodes[0] is the root

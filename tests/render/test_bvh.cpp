@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <string>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "eval/stability.hpp"
@@ -79,8 +79,7 @@ void check_structure(const Scene& scene, const Bvh& bvh) {
       const double padding =
           bvh.padding_scale * (std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])}) + s.radius);
       for (int a = 0; a < 3; ++a) {
-        INFO("sphere " << i << " axis " << a << " centre " << c[a] << " radius " << s.radius << " padding "
-                       << padding);
+        INFO("sphere " << i << " axis " << a << " centre " << c[a] << " radius " << s.radius << " padding " << padding);
         CHECK(double(n.lower[a]) <= c[a] - s.radius - padding);
         CHECK(c[a] + s.radius + padding <= double(n.upper[a]));
       }
