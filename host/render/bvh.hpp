@@ -16,18 +16,22 @@
 // the walk widens every box by the same factor of max|O| for each ray
 // (kernels/clrt_bvh.h), the factor per variant (CLRT_BVH_PAD_*,
 // clrt_layout.h):
-//  - stable, robust (perpendicular-distance discriminant): 2^-16, thousands
-//    of ulps; fp64 2^-40;
+//  - stable, robust (perpendicular-distance discriminant, watertight
+//    triangles): 2^-17, 64 ulps of float, where the worst cases of the
+//    tests add up to ~20 (the ulps of each step, with |g| <= sqrt(3) times
+//    the coordinates' sum); fp64 2^-40;
 //  - fast (native square root and division, whose accuracy the device
 //    chooses): 2^-11;
 //  - naive (the book's b^2 - 4ac): a few ulps of |O - C|^2 in c, so grazing
 //    rays "hit" up to ~2^-22 E^2 / r away from a sphere of radius r (E the
 //    scene's extent, camera included): padded by that too. Its boxes are
 //    large; Accel::Auto keeps testing every sphere.
-// Before, every box was padded by the factor of E: a scene with the book's
-// floor (radius 5 000) padded spheres of radius 0.01 near the camera by 0.08
-// (robust) or 1.2 (fast), and rays tested 1.4x (robust) and 22x (fast) the
-// spheres (docs/results/wide-hierarchy.md).
+// Before, every box was padded by 2^-16 E (fast: 2^-12 E), E the scene's
+// extent: a scene with the book's floor (radius 5 000) padded spheres of
+// radius 0.01 near the camera by 0.08 (robust) or 1.2 (fast), and rays tested
+// 1.4x (robust) and 22x (fast) the spheres (docs/results/wide-hierarchy.md).
+// Since |C| + r and |O| are at most E, no box is padded more than then for
+// any ray (robust; fast and fp64 at most 4x), and most by far less.
 #pragma once
 #include <cstddef>
 #include <string>
