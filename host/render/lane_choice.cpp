@@ -18,11 +18,12 @@ std::vector<int> lane_candidates(const KernelConfig& cfg, const DeviceInfo& dev,
 std::vector<RowBand> probe_bands(int height) {
   std::vector<RowBand> bands;
   if (height <= 0) return bands;
-  const int rows = std::max(4, height / (kProbeBands * kProbeShare));
+  const int share = height / (kProbeBands * kProbeShare);
+  const int rows = std::max(1, (share + kProbeBlockRows - 1) / kProbeBlockRows) * kProbeBlockRows;
   for (int i = 0; i < kProbeBands; ++i) {
-    // centred on the middle of the i-th quarter of the image
+    // centred on the middle of the i-th quarter of the image, on a block row
     const int middle = int((2 * int64_t(i) + 1) * height / (2 * kProbeBands));
-    const int y0 = std::max(0, std::min(middle - rows / 2, height - rows));
+    const int y0 = std::max(0, std::min(middle - rows / 2, height - rows)) / kProbeBlockRows * kProbeBlockRows;
     const int clipped = std::min(rows, height - y0);
     if (!bands.empty() && y0 < bands.back().y0 + bands.back().rows) continue;  // a short image: no row twice
     bands.push_back({y0, clipped});

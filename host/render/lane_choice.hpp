@@ -29,9 +29,14 @@ std::vector<int> lane_candidates(const KernelConfig& cfg, const DeviceInfo& dev,
 
 // The rows a probe renders of a `height`-row image: kProbeBands bands of
 // whole rows spread evenly over the image (a scene's cost per row varies
-// from top to bottom), about 1/kProbeShare of the rows in all, at least 4
-// rows each (one 4x4 block of lanes), clipped to the image.
-constexpr int kProbeBands = 4, kProbeShare = 16;
+// from top to bottom), about 1/kProbeShare of the rows in all, each a
+// multiple of kProbeBlockRows rows starting on a multiple of it, clipped to
+// the image. kProbeBlockRows is the tallest block of lanes (16 lanes: 4x4,
+// packet_rows()): a band of 5 rows cost a 16-lane kernel two rows of blocks,
+// 8 rows of work against one ray per work-item's 5, and the probe chose one
+// ray per work-item on 1 000 spheres at 640x360 where blocks render the frame
+// 1.4x faster (docs/results/wide-hierarchy.md).
+constexpr int kProbeBands = 4, kProbeShare = 16, kProbeBlockRows = 4;
 struct RowBand {
   int y0 = 0, rows = 0;
 };
@@ -41,8 +46,11 @@ std::vector<RowBand> probe_bands(int height);
 // candidates taking turns, and a candidate's time is its fastest round (the
 // machine's load comes and goes; the fastest round is the one least
 // disturbed). The first launch of a program is a round of its own that is
-// not timed (PoCL compiles its work-group function there).
-constexpr int kProbeRounds = 2;
+// not timed (PoCL compiles its work-group function there). Four rounds:
+// with two, a band's time moved by up to 2x from round to round on 1 000
+// spheres at 640x360 and the probe picked the 1.4x slower mode in 2 of 6
+// runs; with four it picked the faster in 5 of 5 (docs/results/wide-hierarchy.md).
+constexpr int kProbeRounds = 4;
 
 // What identifies a probe's answer: the device, the program's options (the
 // scene's features, precision and outputs), and a hash of everything the

@@ -8,8 +8,8 @@
 
 #include "clrt_layout.h"
 #include "render/build_options.hpp"
-#include "render/lane_choice.hpp"
 #include "render/kernel_features.hpp"
+#include "render/lane_choice.hpp"
 #include "render/precision_support.hpp"
 #include "scene/scene_json.hpp"
 #include "test_util.hpp"
@@ -360,12 +360,15 @@ TEST_CASE("probe_bands: rows spread over the image, each row at most once", "[sp
       CHECK(bands[i].y0 >= 0);
       CHECK(bands[i].rows >= 1);
       CHECK(bands[i].y0 + bands[i].rows <= height);
+      // whole blocks of lanes, unless clipped by the image's last row
+      CHECK(bands[i].y0 % kProbeBlockRows == 0);
+      if (bands[i].y0 + bands[i].rows < height) CHECK(bands[i].rows % kProbeBlockRows == 0);
       if (i > 0) CHECK(bands[i].y0 >= bands[i - 1].y0 + bands[i - 1].rows);
       rows += bands[i].rows;
     }
     // about a sixteenth of the rows, never fewer than one 4-row band's worth
     CHECK(rows >= std::min(height, 4));
-    if (height >= kProbeBands * kProbeShare * 4) CHECK(rows <= height / kProbeShare + kProbeBands);
+    if (height >= kProbeBands * kProbeShare * 4) CHECK(rows <= height / kProbeShare + kProbeBands * kProbeBlockRows);
   }
   CHECK(probe_bands(0).empty());
 }
