@@ -23,10 +23,10 @@ typedef double real;
 #else
 typedef float real;
 #if CLRT_PRECISION == CLRT_PRECISION_FAST
-/* -cl-fast-relaxed-math lets the compiler assume no operand is infinite: a
- * comparison with INFINITY is then undefined, and PoCL's walk of the
- * hierarchy kept subtrees it should have dropped (22x the sphere tests per
- * ray). The largest float stands for "no hit" instead; no distance reaches it. */
+/* -cl-fast-relaxed-math lets the compiler assume no operand is infinite, so
+ * a comparison with INFINITY is undefined there: the largest float stands for
+ * "no hit" instead (no distance reaches it). (Not what made the fast variant
+ * slow on large scenes: that was its boxes' padding, host/render/bvh.hpp.) */
 #define REAL_INFINITY FLT_MAX
 #else
 #define REAL_INFINITY INFINITY
