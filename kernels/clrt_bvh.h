@@ -53,13 +53,7 @@ CLRT_INLINE vec3 inverse_direction(const vec3* D) {
  * the lower planes tested from O + p, the upper ones from O - p, is the box
  * widened by p on every side, p = pad x max|O|, at no cost per node. (The
  * rounding of O +- p, 2^-24 max|O|, is far inside p.) */
-#if CLRT_PRECISION == CLRT_PRECISION_FP64
-#define CLRT_RAY_PAD ((real)CLRT_BVH_PAD_FP64)
-#elif CLRT_PRECISION == CLRT_PRECISION_FAST
-#define CLRT_RAY_PAD ((real)CLRT_BVH_PAD_FAST)
-#else
-#define CLRT_RAY_PAD ((real)CLRT_BVH_PAD_FLOAT)
-#endif
+#define CLRT_RAY_PAD ((real)CLRT_BVH_PAD(CLRT_PRECISION))
 typedef struct box_origins {
   vec3 lower, upper; /* where the lower and upper planes are seen from */
 } box_origins;

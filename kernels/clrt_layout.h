@@ -192,6 +192,12 @@ typedef struct clrt_bvh_node {
 #define CLRT_BVH_PAD_FLOAT 0x1p-17
 #define CLRT_BVH_PAD_FAST 0x1p-11
 #define CLRT_BVH_PAD_FP64 0x1p-40
+/* The factor of CLRT_PRECISION_* code `precision`: the one mapping, read by
+ * the host (bvh_padding_scale()) and the kernel (CLRT_RAY_PAD). */
+#define CLRT_BVH_PAD(precision)                                  \
+  ((precision) == CLRT_PRECISION_FP64   ? CLRT_BVH_PAD_FP64 \
+   : (precision) == CLRT_PRECISION_FAST ? CLRT_BVH_PAD_FAST \
+                                        : CLRT_BVH_PAD_FLOAT)
 
 /* Primitive list entries: the primitive's kind in the top bits, its index in
  * the scene's list of that kind below. Planes are never in the hierarchy

@@ -287,14 +287,7 @@ double scene_extent(const Scene& scene, Vec3 origin) {
 }  // namespace
 
 double bvh_padding_scale(Precision precision) {
-  switch (precision) {
-    case Precision::Fp64:
-      return CLRT_BVH_PAD_FP64;
-    case Precision::Fast:
-      return CLRT_BVH_PAD_FAST;
-    default:
-      return CLRT_BVH_PAD_FLOAT;
-  }
+  return CLRT_BVH_PAD(kernel_code(precision));
 }
 
 Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads) {
@@ -339,14 +332,11 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
       item.box.lower[a] = kInfinity;
       item.box.upper[a] = -kInfinity;
     }
+    const std::array<Vec3, 3> vertices{t.v0 - origin, t.v1 - origin, t.v2 - origin};
     double largest = 0;
-    for (const Vec3& vertex : {t.v0, t.v1, t.v2}) {
-      const Vec3 c = vertex - origin;
-      largest = std::max({largest, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
-    }
+    for (const Vec3& c : vertices) largest = std::max({largest, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
     const double pad = bvh.padding_scale * largest;
-    for (const Vec3& vertex : {t.v0, t.v1, t.v2}) {
-      const Vec3 relative = vertex - origin;
+    for (const Vec3& relative : vertices) {
       const std::array<double, 3> c{relative.x, relative.y, relative.z};
       for (int a = 0; a < 3; ++a) {
         item.box.lower[a] = std::min(item.box.lower[a], std::nextafter(c[a] - pad, -kInfinity));
