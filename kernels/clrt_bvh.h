@@ -218,9 +218,11 @@ CLRT_INLINE void leaf_entries(__global const clrt_wide_node* nodes, int referenc
   *count = parent->count[slot % CLRT_BVH_WIDTH];
 }
 
-/* The distances to leaf entry `entry` (a sphere's two roots, or a triangle's
- * distance twice); returns the primitive's id. A ray never meets the
- * triangle it starts on again (its id is `self`). */
+/* The distances to the primitive of leaf entry k (a sphere's two roots, or
+ * a triangle's distance twice); returns the primitive's id. A ray never
+ * meets the triangle it starts on again (its id is `self`). Float variants
+ * read a sphere's centre and radius from the leaf copy beside the entry
+ * (clrt_leaf_sphere), the others from the scene's record. */
 #if CLRT_HAS_TRIANGLES
 #define SHEAR_ARG , const ray_shear* shear
 #define SHEAR_PASS , &shear
@@ -230,8 +232,9 @@ CLRT_INLINE void leaf_entries(__global const clrt_wide_node* nodes, int referenc
 #define SHEAR_PASS
 #define SHEAR_PASS_PTR
 #endif
-CLRT_INLINE int entry_roots(int entry, const vec3* O, const vec3* D SHEAR_ARG, lint self, const scene_data* scene,
+CLRT_INLINE int entry_roots(int k, const vec3* O, const vec3* D SHEAR_ARG, lint self, const scene_data* scene,
                             lreal* t1, lreal* t2, lint* tests) {
+  const int entry = scene->primitives[k];
   const int i = entry & CLRT_PRIMITIVE_INDEX_MASK;
   *tests += (lint)1;
 #if CLRT_HAS_TRIANGLES
@@ -243,7 +246,13 @@ CLRT_INLINE int entry_roots(int entry, const vec3* O, const vec3* D SHEAR_ARG, l
     return id;
   }
 #endif
+#if CLRT_PRECISION != CLRT_PRECISION_NAIVE && CLRT_PRECISION != CLRT_PRECISION_FP64
+  const float4 leaf = vload4(0, scene->leaf_spheres[k].center);
+  float_sphere_roots(O, D, leaf.x, leaf.y, leaf.z, fabs(leaf.w), LEAF_COMPENSATED(leaf.w), &scene->spheres[i],
+                     self == i, t1, t2);
+#else
   intersect(O, D, scene->spheres, i, self == i, t1, t2);
+#endif
   return i;
 }
 
@@ -252,10 +261,9 @@ CLRT_INLINE int entry_roots(int entry, const vec3* O, const vec3* D SHEAR_ARG, l
  * the lower id. */
 CLRT_INLINE void closest_in_leaf(int first, int count, const vec3* O, const vec3* D SHEAR_ARG, real tmin, real tmax,
                                  lint self, const scene_data* scene, lreal* closest, lint* best, lint* tests) {
-  __global const int* primitives = scene->primitives;
   for (int k = first; k < first + count; ++k) {
     lreal t1, t2;
-    const int i = entry_roots(primitives[k], O, D SHEAR_PASS_PTR, self, scene, &t1, &t2, tests);
+    const int i = entry_roots(k, O, D SHEAR_PASS_PTR, self, scene, &t1, &t2, tests);
     /* ties to the lower index, as the loop over every sphere gives them */
     lint nearer = ((t1 < *closest) | ((t1 == *closest) & ((lint)i < *best))) & (tmin < t1) & (t1 < tmax);
     *closest = nearer ? t1 : *closest;
@@ -270,11 +278,10 @@ CLRT_INLINE void closest_in_leaf(int first, int count, const vec3* O, const vec3
  * count) in (tmin, tmax). */
 CLRT_INLINE lint any_in_leaf(int first, int count, const vec3* O, const vec3* D SHEAR_ARG, real tmin, real tmax,
                              lint self, const scene_data* scene, lint* tests) {
-  __global const int* primitives = scene->primitives;
   lint blocked = 0;
   for (int k = first; k < first + count; ++k) {
     lreal t1, t2;
-    entry_roots(primitives[k], O, D SHEAR_PASS_PTR, self, scene, &t1, &t2, tests);
+    entry_roots(k, O, D SHEAR_PASS_PTR, self, scene, &t1, &t2, tests);
     blocked |= ((tmin < t1) & (t1 < tmax)) | ((tmin < t2) & (t2 < tmax));
   }
   return blocked;

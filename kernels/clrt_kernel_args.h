@@ -32,6 +32,7 @@
   X(column_step, const int, integer)                  /* then every column_step-th (clrt_block.h) */                  \
   X(nodes, __global const clrt_wide_node*, buffer)    /* the hierarchy (-DCLRT_BVH) */                                \
   X(primitives, __global const int*, buffer)          /* its leaves' entries */                                       \
+  X(leaf_spheres, __global const clrt_leaf_sphere*, buffer) /* their spheres, in the entries' order */               \
   X(planes, __global const clrt_plane*, buffer)                                                                       \
   X(triangles, __global const clrt_triangle*, buffer)                                                                 \
   X(materials, __global const clrt_material*, buffer) /* of planes and triangles */                                   \

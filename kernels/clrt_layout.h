@@ -208,6 +208,18 @@ typedef struct clrt_bvh_node {
 #define CLRT_PRIMITIVE_TRIANGLE 1
 #define CLRT_PRIMITIVE_KIND_SHIFT 28
 #define CLRT_PRIMITIVE_INDEX_MASK 0x0fffffff
+/* A sphere entry of the hierarchy's leaves, one per entry of the primitive
+ * list and in its order (entries of other kinds leave theirs unused): the
+ * centre and radius a float walk tests, read in the order the walk reads the
+ * entries instead of from the scene's list, where 80-byte records in scene
+ * order made the load of each tested sphere a cache miss (~35% of the kernel's
+ * time on 100 000 spheres: docs/results/wide-hierarchy.md). The radius's sign
+ * bit is the sphere's clrt_sphere.compensated flag. */
+typedef struct clrt_leaf_sphere {
+  clrt_f32 center[3]; /* hi parts, as clrt_sphere's */
+  clrt_f32 radius;    /* negative: compensated */
+} clrt_leaf_sphere; /* 16 bytes */
+
 /* Deepest leaf the host builds (in the binary tree). */
 #define CLRT_BVH_MAX_DEPTH 48
 
@@ -317,6 +329,8 @@ typedef struct clrt_wide_node {
   FIELD(clrt_wide_node, lower)         \
   FIELD(clrt_wide_node, upper)         \
   FIELD(clrt_wide_node, child)         \
-  FIELD(clrt_wide_node, count)
+  FIELD(clrt_wide_node, count)        \
+  FIELD(clrt_leaf_sphere, center)      \
+  FIELD(clrt_leaf_sphere, radius)
 
 #endif /* CLRT_LAYOUT_H */

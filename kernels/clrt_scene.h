@@ -13,6 +13,7 @@ typedef struct scene_data {
   __global const clrt_light* lights;
   __global const clrt_wide_node* nodes;
   __global const int* primitives;
+  __global const clrt_leaf_sphere* leaf_spheres;
   __global const clrt_plane* planes;
   __global const clrt_triangle* triangles;
   __global const clrt_material* materials;

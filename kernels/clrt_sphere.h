@@ -61,11 +61,10 @@ CLRT_INLINE void compensated_roots(const vec3* Op, const vec3* Dp, __global cons
  * starts near the surface gets its near root to ~u r / |D|, far below
  * epsilon for the spheres the host leaves to this path
  * (host/render/conditioning.hpp). */
-CLRT_INLINE void cheap_roots(const vec3* Op, const vec3* Dp, __global const clrt_sphere* s, lreal* b_out, lreal* t1,
-                             lreal* t2) {
+CLRT_INLINE void cheap_roots(const vec3* Op, const vec3* Dp, real cx, real cy, real cz, real r, lreal* b_out,
+                             lreal* t1, lreal* t2) {
   const vec3 O = *Op, D = *Dp;
-  const real r = s->radius;
-  vec3 g = v3(s->center[0] - O.x, s->center[1] - O.y, s->center[2] - O.z);
+  vec3 g = v3(cx - O.x, cy - O.y, cz - O.z);
   lreal a = vdot(D, D);
   lreal b = vdot(g, D);
   vec3 x = v3(g.y * D.z - g.z * D.y, g.z * D.x - g.x * D.z, g.x * D.y - g.y * D.x);
@@ -88,6 +87,50 @@ __constant int clrt_compensated_flags[CLRT_N_SPHERES] = {CLRT_COMPENSATED_FLAGS}
 #else
 #define SPHERE_COMPENSATED(index, s) ((s)->compensated)
 #endif
+/* The same flag for a hierarchy's leaf copy (clrt_leaf_sphere) whose radius
+ * field is `w`: its sign bit, unless the build makes it a constant. */
+#if defined(CLRT_COMPENSATED_SPHERES)
+#define LEAF_COMPENSATED(w) CLRT_COMPENSATED_SPHERES
+#else
+#define LEAF_COMPENSATED(w) signbit(w)
+#endif
+#else
+#define LEAF_COMPENSATED(w) 0 /* (no compensated path) */
+#endif
+
+#if CLRT_PRECISION != CLRT_PRECISION_NAIVE && CLRT_PRECISION != CLRT_PRECISION_FP64
+/* Both roots of |O + tD - C|^2 = r^2 in a float variant, or (inf, inf), for
+ * a sphere given by value (C = (cx, cy, cz) and r, the hi parts: the scene's
+ * record or the hierarchy's leaf copy, clrt_leaf_sphere, give the same
+ * floats and so the same roots); its record `s` is read only by the
+ * compensated path (robust, `compensated` set). `self` is set in the lanes
+ * whose O lies on this sphere (the hit a secondary ray starts from). */
+CLRT_INLINE void float_sphere_roots(const vec3* Op, const vec3* Dp, real cx, real cy, real cz, real r, int compensated,
+                                    __global const clrt_sphere* s, lint self, lreal* t1, lreal* t2) {
+  lreal b, u1, u2;
+#if CLRT_PRECISION == CLRT_PRECISION_ROBUST
+  /* uniform across the lanes: every lane tests the same sphere */
+  if (compensated)
+    compensated_roots(Op, Dp, s, &b, &u1, &u2);
+  else
+    cheap_roots(Op, Dp, cx, cy, cz, r, &b, &u1, &u2);
+#else
+  (void)compensated;
+  (void)s;
+  const vec3 O = *Op;
+  vec3 f = v3(O.x - cx, O.y - cy, O.z - cz);
+  lreal c = vdot(f, f) - r * r;
+  stable_roots(&f, c, Dp, r, &b, &u1, &u2);
+#endif
+#if CLRT_SELF_ROOTS
+  const vec3 D = *Dp;
+  lreal a = vdot(D, D);
+  u1 = self ? (lreal)0 : u1;
+  u2 = self ? REAL_DIVIDE(2 * b, a) : u2;
+#endif
+  *t1 = u1;
+  *t2 = u2;
+}
 #endif
 
 /* Both roots of |O + tD - C|^2 = r^2 for sphere `index`, or (inf, inf).
@@ -112,27 +155,12 @@ CLRT_INLINE void intersect(const vec3* Op, const vec3* Dp, __global const clrt_s
   *t1 = disc < 0 ? (lreal)REAL_INFINITY : (-b + sq) / (2 * a);
   *t2 = disc < 0 ? (lreal)REAL_INFINITY : (-b - sq) / (2 * a);
 #else
-  lreal b, u1, u2;
 #if CLRT_PRECISION == CLRT_PRECISION_ROBUST
-  /* uniform across the lanes: every lane tests the same sphere */
-  if (SPHERE_COMPENSATED(index, s))
-    compensated_roots(Op, Dp, s, &b, &u1, &u2);
-  else
-    cheap_roots(Op, Dp, s, &b, &u1, &u2);
+  const int compensated = SPHERE_COMPENSATED(index, s);
 #else
-  const vec3 O = *Op;
-  vec3 f = v3(O.x - s->center[0], O.y - s->center[1], O.z - s->center[2]);
-  lreal c = vdot(f, f) - s->radius * s->radius;
-  stable_roots(&f, c, Dp, s->radius, &b, &u1, &u2);
+  const int compensated = 0;
 #endif
-#if CLRT_SELF_ROOTS
-  const vec3 D = *Dp;
-  lreal a = vdot(D, D);
-  u1 = self ? (lreal)0 : u1;
-  u2 = self ? REAL_DIVIDE(2 * b, a) : u2;
-#endif
-  *t1 = u1;
-  *t2 = u2;
+  float_sphere_roots(Op, Dp, s->center[0], s->center[1], s->center[2], s->radius, compensated, s, self, t1, t2);
 #endif
 }
 

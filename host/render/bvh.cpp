@@ -69,12 +69,6 @@ struct Box {
   }
 };
 
-struct Item {
-  Box box;                         // the sphere's box, padded
-  std::array<double, 3> centroid;  // its centre
-  clrt_i32 entry;                  // kind << shift | index
-};
-
 // Outward rounding to float: the float box contains the double one.
 float round_down(double v) {
   float f = static_cast<float>(v);
@@ -86,6 +80,34 @@ float round_up(double v) {
   if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
   return f;
 }
+
+// A primitive as the build sorts it, in float: 40 bytes instead of 80 in
+// double, which at 4 million triangles was the preparation's peak once the
+// triangles went to the device in chunks (docs/results/meshes.md). The box
+// is rounded outward, so it holds the padded double box, and the nodes'
+// boxes are float anyway; the centroid only picks bins.
+struct Item {
+  std::array<float, 3> lower, upper;  // the padded box, rounded outward
+  std::array<float, 3> centroid;      // its centre
+  clrt_i32 entry;                     // kind << shift | index
+
+  void set_box(const Box& box) {
+    for (int a = 0; a < 3; ++a) {
+      lower[a] = round_down(box.lower[a]);
+      upper[a] = round_up(box.upper[a]);
+    }
+  }
+  Box box() const {
+    Box b;
+    for (int a = 0; a < 3; ++a) b.lower[a] = lower[a], b.upper[a] = upper[a];
+    return b;
+  }
+  Box centre_point() const {
+    Box b;
+    for (int a = 0; a < 3; ++a) b.lower[a] = b.upper[a] = centroid[a];
+    return b;
+  }
+};
 
 // Subtrees of at least this many spheres may be built on another thread (a
 // thread costs ~20 us; a subtree of 8 192 spheres ~2 ms).
@@ -117,10 +139,8 @@ class Builder {
   void build(size_t node, size_t begin, size_t end, int depth) {
     Box bounds, centroids;
     for (size_t i = begin; i < end; ++i) {
-      bounds.grow(items_[i].box);
-      Box point;
-      point.lower = point.upper = items_[i].centroid;
-      centroids.grow(point);
+      bounds.grow(items_[i].box());
+      centroids.grow(items_[i].centre_point());
     }
     set_box(node, bounds);
     out_.depth = std::max(out_.depth, depth);
@@ -175,7 +195,7 @@ class Builder {
       std::array<size_t, kBvhBins> counts{};
       for (size_t i = begin; i < end; ++i) {
         const int b = bin(items_[i].centroid[a], low, extent);
-        boxes[b].grow(items_[i].box);
+        boxes[b].grow(items_[i].box());
         ++counts[b];
       }
       // Costs of splitting after bin b: left [0, b], right [b + 1, bins).
@@ -312,11 +332,13 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
     const double own = bvh.padding_scale * (std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])}) + s.radius);
     const double pad = precision == Precision::Naive ? own + std::ldexp(extent * extent / s.radius, -22) : own;
     // (each step rounded outward: the box holds the exact one)
+    Box box;
     for (int a = 0; a < 3; ++a) {
-      items[i].box.lower[a] = std::nextafter(std::nextafter(c[a] - s.radius, -kInfinity) - pad, -kInfinity);
-      items[i].box.upper[a] = std::nextafter(std::nextafter(c[a] + s.radius, kInfinity) + pad, kInfinity);
+      box.lower[a] = std::nextafter(std::nextafter(c[a] - s.radius, -kInfinity) - pad, -kInfinity);
+      box.upper[a] = std::nextafter(std::nextafter(c[a] + s.radius, kInfinity) + pad, kInfinity);
+      items[i].centroid[a] = static_cast<float>(c[a]);
     }
-    items[i].centroid = c;
+    items[i].set_box(box);
     items[i].entry =
         static_cast<clrt_i32>(CLRT_PRIMITIVE_SPHERE << CLRT_PRIMITIVE_KIND_SHIFT) | static_cast<clrt_i32>(i);
   }
@@ -328,10 +350,7 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
     const Triangle& t = scene.triangles[k];
     Item& item = items[scene.spheres.size() + k];
     std::array<double, 3> sum{0, 0, 0};
-    for (int a = 0; a < 3; ++a) {
-      item.box.lower[a] = kInfinity;
-      item.box.upper[a] = -kInfinity;
-    }
+    Box box;
     const std::array<Vec3, 3> vertices{t.v0 - origin, t.v1 - origin, t.v2 - origin};
     double largest = 0;
     for (const Vec3& c : vertices) largest = std::max({largest, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
@@ -339,12 +358,13 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
     for (const Vec3& relative : vertices) {
       const std::array<double, 3> c{relative.x, relative.y, relative.z};
       for (int a = 0; a < 3; ++a) {
-        item.box.lower[a] = std::min(item.box.lower[a], std::nextafter(c[a] - pad, -kInfinity));
-        item.box.upper[a] = std::max(item.box.upper[a], std::nextafter(c[a] + pad, kInfinity));
+        box.lower[a] = std::min(box.lower[a], std::nextafter(c[a] - pad, -kInfinity));
+        box.upper[a] = std::max(box.upper[a], std::nextafter(c[a] + pad, kInfinity));
         sum[a] += c[a];
       }
     }
-    item.centroid = {sum[0] / 3, sum[1] / 3, sum[2] / 3};
+    item.set_box(box);
+    for (int a = 0; a < 3; ++a) item.centroid[a] = static_cast<float>(sum[a] / 3);
     item.entry = static_cast<clrt_i32>(CLRT_PRIMITIVE_TRIANGLE << CLRT_PRIMITIVE_KIND_SHIFT) | static_cast<clrt_i32>(k);
   }
   bvh.nodes.reserve(2 * items.size() + 1);

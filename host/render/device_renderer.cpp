@@ -65,7 +65,16 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
     check_local_size();
   }
   auto t0 = std::chrono::steady_clock::now();
-  SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling);
+  // the triangles straight into their device buffer, a chunk at a time
+  triangles_ =
+      cl::Buffer(context_, CL_MEM_READ_ONLY, std::max<size_t>(1, scene.triangles.size()) * sizeof(clrt_triangle));
+  size_t triangles_written = 0;
+  const TriangleSink to_device = [&](const clrt_triangle* triangles, size_t count) {
+    queue_.enqueueWriteBuffer(triangles_, CL_TRUE, triangles_written * sizeof(clrt_triangle),
+                              count * sizeof(clrt_triangle), triangles);
+    triangles_written += count;
+  };
+  SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling, to_device);
   params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
   spheres_ = upload(context_, queue_, data.spheres);
   lights_ = upload(context_, queue_, data.lights);
@@ -77,8 +86,9 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   const std::vector<clrt_i32> no_primitives;
   nodes_ = upload(context_, queue_, bvh ? bvh->wide : no_nodes);
   primitives_ = upload(context_, queue_, bvh ? bvh->primitives : no_primitives);
+  leaf_spheres_ = upload(context_, queue_,
+                         bvh ? pack_leaf_spheres(bvh->primitives, data.spheres) : std::vector<clrt_leaf_sphere>{});
   planes_ = upload(context_, queue_, data.planes);
-  triangles_ = upload(context_, queue_, data.triangles);
   materials_ = upload(context_, queue_, data.materials);
   timings_.upload_ms = ms_since(t0);
   width_ = width;
@@ -262,6 +272,7 @@ void DeviceRenderer::set_tile_args(cl::Kernel& kernel, const ResultSlot& slot, i
   set_arg<RenderArg::tile_h>(kernel, cl_int(h));
   set_arg<RenderArg::nodes>(kernel, nodes_);
   set_arg<RenderArg::primitives>(kernel, primitives_);
+  set_arg<RenderArg::leaf_spheres>(kernel, leaf_spheres_);
   set_arg<RenderArg::planes>(kernel, planes_);
   set_arg<RenderArg::triangles>(kernel, triangles_);
   set_arg<RenderArg::materials>(kernel, materials_);

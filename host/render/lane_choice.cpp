@@ -6,6 +6,8 @@
 #include <map>
 #include <mutex>
 
+#include "util/content_hash.hpp"
+
 namespace clrt {
 
 std::vector<int> lane_candidates(const KernelConfig& cfg, const DeviceInfo& dev, bool bvh) {
@@ -33,28 +35,6 @@ std::vector<RowBand> probe_bands(int height) {
 
 namespace {
 
-// FNV-1a over 64-bit words (the bytes' tail as one more word): a key, not
-// a checksum against tampering.
-struct Hash {
-  uint64_t value = 1469598103934665603ull;
-  void add(const void* data, size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    size_t i = 0;
-    for (; i + 8 <= bytes; i += 8) {
-      uint64_t word;
-      std::memcpy(&word, p + i, 8);
-      value = (value ^ word) * 1099511628211ull;
-    }
-    uint64_t tail = 0;
-    if (bytes > i) std::memcpy(&tail, p + i, bytes - i);  // (an empty vector's data() may be null)
-    value = (value ^ tail ^ bytes) * 1099511628211ull;
-  }
-  template <class T>
-  void add(const std::vector<T>& v) {
-    add(v.data(), v.size() * sizeof(T));
-  }
-};
-
 std::mutex memory_mutex;
 std::map<std::string, int>& memory() {
   static std::map<std::string, int> choices;
@@ -65,13 +45,13 @@ std::map<std::string, int>& memory() {
 
 std::string lane_choice_key(const DeviceInfo& dev, const std::string& options, const SceneData& data,
                             const std::vector<clrt_wide_node>* nodes) {
-  Hash hash;
+  ContentHash hash;
   hash.add(&data.params, sizeof data.params);
   hash.add(data.spheres);
   hash.add(data.lights);
   hash.add(data.materials);
   hash.add(data.planes);
-  hash.add(data.triangles);
+  hash.add(&data.triangles_digest, sizeof data.triangles_digest);
   if (nodes) hash.add(*nodes);
   return dev.name + "\n" + dev.platform_name + "\n" + options + "\n" + std::to_string(hash.value);
 }

@@ -10,6 +10,7 @@
 
 #include "render/conditioning.hpp"
 #include "scene/ray_tree.hpp"
+#include "util/content_hash.hpp"
 
 namespace clrt {
 
@@ -27,6 +28,7 @@ static_assert(sizeof(clrt_triangle) == 96, "clrt_triangle size");
 static_assert(sizeof(clrt_ray_counts) == 20, "clrt_ray_counts size");
 static_assert(sizeof(clrt_bvh_node) == 32, "clrt_bvh_node size");
 static_assert(sizeof(clrt_wide_node) == 32 * CLRT_BVH_WIDTH, "clrt_wide_node size");
+static_assert(sizeof(clrt_leaf_sphere) == 16, "clrt_leaf_sphere size");
 static_assert(CLRT_BVH_WIDTH == 4 || CLRT_BVH_WIDTH == 8, "CLRT_BVH_WIDTH: 4 or 8");
 
 namespace {
@@ -129,7 +131,65 @@ double camera_medium(const Scene& scene) {
   return around ? around->refractive_index : 1.0;
 }
 
-SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling) {
+namespace {
+
+// Chapter 5's planes and triangles (shifted by `shift`) and their
+// materials into `d`; the triangles to `sink` if it is set (pack_scene()).
+void pack_flat(const Scene& scene, const Vec3& shift, const TriangleSink& sink, SceneData& d) {
+  // Planes and triangles name their material by index; equal materials (a
+  // mesh's faces) share one entry.
+  std::map<std::tuple<double, double, double, double, double>, clrt_i32> material_index;
+  auto material = [&](const Material& m) {
+    const auto key = std::make_tuple(m.color.x, m.color.y, m.color.z, m.specular, m.reflective);
+    auto [at, added] = material_index.emplace(key, static_cast<clrt_i32>(d.materials.size()));
+    if (added) {
+      clrt_material o{};
+      o.color[0] = static_cast<float>(m.color.x);
+      o.color[1] = static_cast<float>(m.color.y);
+      o.color[2] = static_cast<float>(m.color.z);
+      o.specular = static_cast<float>(m.specular);
+      o.reflective = static_cast<float>(m.reflective);
+      d.materials.push_back(o);
+    }
+    return at->second;
+  };
+  for (const Plane& plane : scene.planes) {
+    clrt_plane o{};
+    split3(plane.point - shift, o.point, o.point_lo);
+    split3(plane.normal, o.normal, o.normal_lo);
+    o.material = material(plane.material);
+    d.planes.push_back(o);
+  }
+  // in chunks: kept, or handed to the sink (and dropped) as each fills
+  ContentHash digest;
+  std::vector<clrt_triangle> chunk;
+  chunk.reserve(std::min(scene.triangles.size(), kTriangleChunk));
+  const auto flush = [&] {
+    digest.add(chunk);
+    if (sink)
+      sink(chunk.data(), chunk.size());
+    else
+      d.triangles.insert(d.triangles.end(), chunk.begin(), chunk.end());
+    chunk.clear();
+  };
+  if (!sink) d.triangles.reserve(scene.triangles.size());
+  for (const Triangle& t : scene.triangles) {
+    clrt_triangle o{};
+    split3(t.v0 - shift, o.v0, o.v0_lo);
+    split3(t.v1 - shift, o.v1, o.v1_lo);
+    split3(t.v2 - shift, o.v2, o.v2_lo);
+    o.material = material(t.material);
+    chunk.push_back(o);
+    if (chunk.size() == kTriangleChunk) flush();
+  }
+  if (!chunk.empty()) flush();
+  d.triangles_digest = digest.value;
+}
+
+}  // namespace
+
+SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling,
+                     const TriangleSink& sink) {
   SceneData d;
   const Vec3 shift = packing_origin(scene, precision);
   clrt_params& p = d.params;
@@ -188,42 +248,24 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
     }
     d.lights.push_back(o);
   }
-  // Planes and triangles name their material by index; equal materials (a
-  // mesh's faces) share one entry.
-  std::map<std::tuple<double, double, double, double, double>, clrt_i32> material_index;
-  auto material = [&](const Material& m) {
-    const auto key = std::make_tuple(m.color.x, m.color.y, m.color.z, m.specular, m.reflective);
-    auto [at, added] = material_index.emplace(key, static_cast<clrt_i32>(d.materials.size()));
-    if (added) {
-      clrt_material o{};
-      o.color[0] = static_cast<float>(m.color.x);
-      o.color[1] = static_cast<float>(m.color.y);
-      o.color[2] = static_cast<float>(m.color.z);
-      o.specular = static_cast<float>(m.specular);
-      o.reflective = static_cast<float>(m.reflective);
-      d.materials.push_back(o);
-    }
-    return at->second;
-  };
   p.n_planes = static_cast<clrt_i32>(scene.planes.size());
   p.n_triangles = static_cast<clrt_i32>(scene.triangles.size());
-  for (const Plane& plane : scene.planes) {
-    clrt_plane o{};
-    split3(plane.point - shift, o.point, o.point_lo);
-    split3(plane.normal, o.normal, o.normal_lo);
-    o.material = material(plane.material);
-    d.planes.push_back(o);
-  }
-  d.triangles.reserve(scene.triangles.size());
-  for (const Triangle& t : scene.triangles) {
-    clrt_triangle o{};
-    split3(t.v0 - shift, o.v0, o.v0_lo);
-    split3(t.v1 - shift, o.v1, o.v1_lo);
-    split3(t.v2 - shift, o.v2, o.v2_lo);
-    o.material = material(t.material);
-    d.triangles.push_back(o);
-  }
+  pack_flat(scene, shift, sink, d);
   return d;
+}
+
+std::vector<clrt_leaf_sphere> pack_leaf_spheres(const std::vector<clrt_i32>& primitives,
+                                                const std::vector<clrt_sphere>& spheres) {
+  const auto is_sphere = [](clrt_i32 entry) { return (entry >> CLRT_PRIMITIVE_KIND_SHIFT) == CLRT_PRIMITIVE_SPHERE; };
+  if (std::none_of(primitives.begin(), primitives.end(), is_sphere)) return {};
+  std::vector<clrt_leaf_sphere> leaves(primitives.size());
+  for (size_t k = 0; k < primitives.size(); ++k) {
+    if (!is_sphere(primitives[k])) continue;
+    const clrt_sphere& s = spheres.at(size_t(primitives[k] & CLRT_PRIMITIVE_INDEX_MASK));
+    std::copy(s.center, s.center + 3, leaves[k].center);
+    leaves[k].radius = s.compensated ? -s.radius : s.radius;
+  }
+  return leaves;
 }
 
 }  // namespace clrt

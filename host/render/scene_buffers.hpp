@@ -1,6 +1,8 @@
 // scene_buffers.hpp - packs a Scene into the layouts of kernels/clrt_layout.h.
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "clrt_layout.h"
@@ -16,8 +18,16 @@ struct SceneData {
   std::vector<clrt_light> lights;
   std::vector<clrt_material> materials;  // of the planes and triangles
   std::vector<clrt_plane> planes;
-  std::vector<clrt_triangle> triangles;
+  std::vector<clrt_triangle> triangles;  // empty where pack_scene() gave them to a sink
+  uint64_t triangles_digest = 0;         // of the packed triangles (ContentHash), kept or not
 };
+
+// Where pack_scene() puts the packed triangles: SceneData::triangles when
+// empty; else this sink gets them in order, kTriangleChunk at most a call,
+// so that a caller can write them to a device without holding them all
+// (the upload of 4 million held their 384 MB twice: docs/results/meshes.md).
+using TriangleSink = std::function<void(const clrt_triangle* triangles, size_t count)>;
+constexpr size_t kTriangleChunk = size_t(1) << 16;
 
 // Robust and fast modes are camera-relative: the host subtracts the camera
 // position in double before rounding to float, so geometry near the camera
@@ -43,7 +53,14 @@ double outside_medium(const Scene& scene, size_t index);
 double camera_medium(const Scene& scene);
 
 // spp: N for N x N samples per pixel (clrt_params.spp, read at run time).
-SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling = {});
+SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling = {},
+                     const TriangleSink& sink = {});
+
+// The hierarchy's copies of the packed spheres for its leaves
+// (clrt_leaf_sphere): one per entry of `primitives` (a Bvh's), in its order,
+// the radius negated for a compensated sphere; empty when no entry is a sphere.
+std::vector<clrt_leaf_sphere> pack_leaf_spheres(const std::vector<clrt_i32>& primitives,
+                                                const std::vector<clrt_sphere>& spheres);
 
 // One entry of CLRT_LAYOUT_FIELDS as this (host) compiler lays it out; the
 // layout test compares it with the kernel compiler's view.

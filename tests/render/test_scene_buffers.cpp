@@ -8,6 +8,7 @@
 #include <limits>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "render/scene_buffers.hpp"
 #include "test_util.hpp"
@@ -93,6 +94,55 @@ TEST_CASE("pack_scene: counts, sizes, materials and light codes", "[buffers]") {
   CHECK(d.lights[1].intensity == 0.6f);
 }
 
+TEST_CASE("pack_scene: a triangle sink gets every triangle in order, in chunks, with the same digest", "[buffers]") {
+  // More than two chunks, the last one short; two materials.
+  Scene scene = clrt_test::load("scenes/cgfs-demo.json");
+  const size_t count = 2 * kTriangleChunk + 123;
+  for (size_t i = 0; i < count; ++i) {
+    Triangle t;
+    t.v0 = {double(i), 0, 1};
+    t.v1 = {double(i) + 0.5, 1.0 / 3, 1};
+    t.v2 = {double(i), 1, 2.0 / 3};
+    t.material.color = {i % 2 ? 255.0 : 10.0, 0, 0};
+    scene.triangles.push_back(t);
+  }
+  const SceneData kept = pack_scene(scene, Precision::Robust, 64, 48, 3);
+  REQUIRE(kept.triangles.size() == count);
+  std::vector<clrt_triangle> given;
+  std::vector<size_t> chunks;
+  const SceneData sunk = pack_scene(scene, Precision::Robust, 64, 48, 3, {}, [&](const clrt_triangle* t, size_t n) {
+    chunks.push_back(n);
+    given.insert(given.end(), t, t + n);
+  });
+  CHECK(sunk.triangles.empty());
+  CHECK(chunks == std::vector<size_t>{kTriangleChunk, kTriangleChunk, 123});
+  REQUIRE(given.size() == count);
+  CHECK(std::memcmp(given.data(), kept.triangles.data(), count * sizeof(clrt_triangle)) == 0);
+  CHECK(sunk.triangles_digest == kept.triangles_digest);
+  CHECK(sunk.materials.size() == kept.materials.size());
+  // the digest sees a change in any triangle
+  scene.triangles[count - 1].v2.z += 1;
+  CHECK(pack_scene(scene, Precision::Robust, 64, 48, 3).triangles_digest != kept.triangles_digest);
+}
+
+TEST_CASE("pack_leaf_spheres: each sphere entry's centre and radius, the sign its compensation", "[buffers]") {
+  const Scene demo = clrt_test::load("scenes/cgfs-demo.json");
+  const SceneData d = pack_scene(demo, Precision::Robust, 64, 48, 3);
+  const clrt_i32 triangle = CLRT_PRIMITIVE_TRIANGLE << CLRT_PRIMITIVE_KIND_SHIFT;
+  const std::vector<clrt_i32> entries{3, triangle | 0, 1, 0, 2};
+  const std::vector<clrt_leaf_sphere> leaves = pack_leaf_spheres(entries, d.spheres);
+  REQUIRE(leaves.size() == entries.size());
+  for (size_t k : {0, 2, 3, 4}) {
+    const clrt_sphere& s = d.spheres[size_t(entries[k])];
+    INFO(k);
+    CHECK(std::memcmp(leaves[k].center, s.center, sizeof s.center) == 0);
+    CHECK(std::fabs(leaves[k].radius) == s.radius);
+    CHECK(std::signbit(leaves[k].radius) == (s.compensated != 0));
+  }
+  CHECK(d.spheres[3].compensated == 1);  // the floor (radius 5000): the sign is used
+  CHECK(pack_leaf_spheres({triangle | 0, triangle | 1}, d.spheres).empty());  // no sphere entry: no copies
+}
+
 TEST_CASE("robust and fast are camera-relative, positions move, directions do not", "[buffers]") {
   CHECK(camera_relative(Precision::Robust));
   CHECK(camera_relative(Precision::Fast));
@@ -132,11 +182,11 @@ TEST_CASE("the host's layout field list names every struct member once", "[buffe
   }
   CHECK(bytes == int(sizeof(clrt_sphere) + sizeof(clrt_light) + sizeof(clrt_params) + sizeof(clrt_material) +
                      sizeof(clrt_plane) + sizeof(clrt_triangle) + sizeof(clrt_ray_counts) + sizeof(clrt_bvh_node) +
-                     sizeof(clrt_wide_node)));
+                     sizeof(clrt_wide_node) + sizeof(clrt_leaf_sphere)));
   CHECK(kLayoutFields[0].offset == 0);
   CHECK(std::string(kLayoutFields[0].type) == "clrt_sphere");
-  CHECK(std::string(std::prev(std::end(kLayoutFields))->type) == "clrt_wide_node");
-  CHECK(std::string(std::prev(std::end(kLayoutFields))->member) == "count");
+  CHECK(std::string(std::prev(std::end(kLayoutFields))->type) == "clrt_leaf_sphere");
+  CHECK(std::string(std::prev(std::end(kLayoutFields))->member) == "radius");
 }
 
 }  // namespace test_scene_buffers
