@@ -239,8 +239,10 @@ CLRT_INLINE int entry_roots(int k, const vec3* O, const vec3* D SHEAR_ARG, lint 
   *tests += (lint)1;
 #if CLRT_HAS_TRIANGLES
   if ((entry >> CLRT_PRIMITIVE_KIND_SHIFT) == CLRT_PRIMITIVE_TRIANGLE) {
-    const int id = TRIANGLE_ID0(scene->params) + i;
-    const lreal t = triangle_distance(O, shear, &scene->triangles[i]);
+    /* (entries name a triangle's place in the buffer, its record its id) */
+    __global const clrt_triangle* tri = &scene->triangles[i];
+    const int id = TRIANGLE_ID0(scene->params) + tri->index;
+    const lreal t = triangle_distance(O, shear, tri);
     *t1 = self == id ? (lreal)REAL_INFINITY : t;
     *t2 = *t1;
     return id;

@@ -131,12 +131,18 @@ typedef struct clrt_plane {
   clrt_f32 pad_lo2;
 } clrt_plane; /* 64 bytes */
 
-/* A triangle: its vertices (hi parts, then lo parts) and its material. */
+/* A triangle: its vertices (hi parts, then lo parts), its material and its
+ * index in the scene's list (its id is TRIANGLE_ID0 + index). Where the
+ * kernel walks a hierarchy the buffer holds the triangles in the order of
+ * its entries, which name their place in it (the host's
+ * order_triangles()), and triangle_slots maps an index to that place: a
+ * walk then reads them in the order it tests them, instead of a cache miss
+ * away each (docs/results/wide-hierarchy.md). */
 typedef struct clrt_triangle {
   clrt_f32 v0[3];
   clrt_i32 material; /* index into the materials */
   clrt_f32 v1[3];
-  clrt_f32 pad;
+  clrt_i32 index; /* in the scene's list of triangles */
   clrt_f32 v2[3];
   clrt_f32 pad2;
   clrt_f32 v0_lo[3];
@@ -310,7 +316,7 @@ typedef struct clrt_wide_node {
   FIELD(clrt_triangle, v0)             \
   FIELD(clrt_triangle, material)       \
   FIELD(clrt_triangle, v1)             \
-  FIELD(clrt_triangle, pad)            \
+  FIELD(clrt_triangle, index)          \
   FIELD(clrt_triangle, v2)             \
   FIELD(clrt_triangle, pad2)           \
   FIELD(clrt_triangle, v0_lo)          \

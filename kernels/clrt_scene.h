@@ -16,6 +16,7 @@ typedef struct scene_data {
   __global const clrt_leaf_sphere* leaf_spheres;
   __global const clrt_plane* planes;
   __global const clrt_triangle* triangles;
+  __global const int* triangle_slots;
   __global const clrt_material* materials;
 } scene_data;
 
@@ -30,6 +31,13 @@ typedef struct scene_data {
 #define CLRT_TRIANGLE_COUNT(params) ((params)->n_triangles)
 #else
 #define CLRT_TRIANGLE_COUNT(params) 0
+#endif
+/* The record of the triangle with index i in the scene's list: in the
+ * hierarchy's order where the kernel walks one (clrt_layout.h). */
+#ifdef CLRT_BVH
+#define TRIANGLE_RECORD(scene, i) (&(scene)->triangles[(scene)->triangle_slots[i]])
+#else
+#define TRIANGLE_RECORD(scene, i) (&(scene)->triangles[i])
 #endif
 /* The first id of each flat kind. */
 #define PLANE_ID0(params) CLRT_SPHERE_COUNT(params)

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <future>
 #include <limits>
+#include <stdexcept>
 #include <thread>
 #include <utility>
 
@@ -372,8 +373,27 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   ThreadBudget budget(threads);
   Builder(items, bvh, budget).build(0, 0, items.size(), 0);
+  std::vector<Item>().swap(items);
   bvh.wide = collapse_bvh(bvh.nodes);
+  // triangle entries renamed to their place in the leaves' order
+  bvh.triangle_order.reserve(scene.triangles.size());
+  for (clrt_i32& entry : bvh.primitives)
+    if ((entry >> CLRT_PRIMITIVE_KIND_SHIFT) == CLRT_PRIMITIVE_TRIANGLE) {
+      bvh.triangle_order.push_back(entry & CLRT_PRIMITIVE_INDEX_MASK);
+      entry = static_cast<clrt_i32>(CLRT_PRIMITIVE_TRIANGLE << CLRT_PRIMITIVE_KIND_SHIFT) |
+              static_cast<clrt_i32>(bvh.triangle_order.size() - 1);
+    }
   return bvh;
+}
+
+std::vector<clrt_i32> triangle_slots(const Bvh& bvh) {
+  std::vector<clrt_i32> slots(bvh.triangle_order.size(), -1);
+  for (size_t k = 0; k < bvh.triangle_order.size(); ++k) {
+    const size_t index = size_t(bvh.triangle_order[k]);
+    if (index >= slots.size() || slots[index] >= 0) throw std::logic_error("triangle_order is not a permutation");
+    slots[index] = static_cast<clrt_i32>(k);
+  }
+  return slots;
 }
 
 }  // namespace clrt

@@ -66,9 +66,14 @@ constexpr int kBvhBins = 16;  // SAH candidates per axis
 struct Bvh {
   std::vector<clrt_bvh_node> nodes;  // the binary tree; nodes[0] is the root
   std::vector<clrt_wide_node> wide;  // the same tree collapsed (wide_bvh.hpp): what the kernel walks
-  std::vector<clrt_i32> primitives;  // the leaves' entries (kind << shift | index)
-  int depth = 0;                     // deepest leaf of the binary tree, the root being 0
-  double padding_scale = 0;          // CLRT_BVH_PAD_*: a box is padded by this times max|C| + r (naive: more)
+  std::vector<clrt_i32> primitives;  // the leaves' entries (kind << shift | index; see below)
+  // A triangle entry's index is its place in this list of the scene's
+  // triangle indices, the order in which the leaves hold them: the device's
+  // triangles are stored so (clrt_layout.h, clrt_triangle), and a walk reads
+  // them in the order it tests them. A sphere entry's is the scene's index.
+  std::vector<clrt_i32> triangle_order;
+  int depth = 0;             // deepest leaf of the binary tree, the root being 0
+  double padding_scale = 0;  // CLRT_BVH_PAD_*: a box is padded by this times max|C| + r (naive: more)
   // What the device holds: the wide nodes and the entries.
   size_t bytes() const { return wide.size() * sizeof(clrt_wide_node) + primitives.size() * sizeof(clrt_i32); }
 };
@@ -82,6 +87,10 @@ double bvh_padding_scale(Precision precision);
 // (render/scene_buffers.hpp: packing_origin()). Large subtrees are built on
 // up to `threads` threads (0: one per hardware thread); the result is the
 // same for every thread count.
+// The inverse of bvh.triangle_order: each scene triangle's place in it
+// (the kernel's triangle_slots).
+std::vector<clrt_i32> triangle_slots(const Bvh& bvh);
+
 Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin = {}, int threads = 0);
 
 }  // namespace clrt

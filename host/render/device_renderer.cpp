@@ -74,12 +74,15 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
                               count * sizeof(clrt_triangle), triangles);
     triangles_written += count;
   };
-  SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling, to_device);
+  // (in the hierarchy's order where the kernel walks one: clrt_layout.h)
+  const bool walks = uses_bvh(config_.accel, bvh_primitive_count(scene), config_.precision);
+  const std::vector<clrt_i32>* order = walks && bvh && !scene.triangles.empty() ? &bvh->triangle_order : nullptr;
+  triangle_slots_ = upload(context_, queue_, order ? triangle_slots(*bvh) : std::vector<clrt_i32>{});
+  SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling, to_device, order);
   params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
   spheres_ = upload(context_, queue_, data.spheres);
   lights_ = upload(context_, queue_, data.lights);
-  if (uses_bvh(config_.accel, bvh_primitive_count(scene), config_.precision) && !bvh)
-    throw std::logic_error("BVH build without its hierarchy");
+  if (walks && !bvh) throw std::logic_error("BVH build without its hierarchy");
   // (one-element stand-ins when the kernel does not walk a hierarchy; both
   // branches lvalues, so the hierarchy is uploaded without a copy)
   const std::vector<clrt_wide_node> no_nodes;
@@ -275,6 +278,7 @@ void DeviceRenderer::set_tile_args(cl::Kernel& kernel, const ResultSlot& slot, i
   set_arg<RenderArg::leaf_spheres>(kernel, leaf_spheres_);
   set_arg<RenderArg::planes>(kernel, planes_);
   set_arg<RenderArg::triangles>(kernel, triangles_);
+  set_arg<RenderArg::triangle_slots>(kernel, triangle_slots_);
   set_arg<RenderArg::materials>(kernel, materials_);
   set_arg<RenderArg::status>(kernel, slot.status);
   if (config_.output.layers) set_arg<RenderArg::layers>(kernel, slot.layers);  // (an argument of layer builds only)

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <iterator>
 #include <map>
+#include <stdexcept>
 #include <tuple>
 
 #include "render/conditioning.hpp"
@@ -134,8 +135,10 @@ double camera_medium(const Scene& scene) {
 namespace {
 
 // Chapter 5's planes and triangles (shifted by `shift`) and their
-// materials into `d`; the triangles to `sink` if it is set (pack_scene()).
-void pack_flat(const Scene& scene, const Vec3& shift, const TriangleSink& sink, SceneData& d) {
+// materials into `d`; the triangles to `sink` if it is set, in `order` if
+// it is (pack_scene()).
+void pack_flat(const Scene& scene, const Vec3& shift, const TriangleSink& sink, const std::vector<clrt_i32>* order,
+               SceneData& d) {
   // Planes and triangles name their material by index; equal materials (a
   // mesh's faces) share one entry.
   std::map<std::tuple<double, double, double, double, double>, clrt_i32> material_index;
@@ -173,8 +176,13 @@ void pack_flat(const Scene& scene, const Vec3& shift, const TriangleSink& sink, 
     chunk.clear();
   };
   if (!sink) d.triangles.reserve(scene.triangles.size());
-  for (const Triangle& t : scene.triangles) {
+  if (order && order->size() != scene.triangles.size())
+    throw std::logic_error("pack_scene: a triangle order of another scene");
+  for (size_t k = 0; k < scene.triangles.size(); ++k) {
+    const size_t index = order ? size_t(order->at(k)) : k;
+    const Triangle& t = scene.triangles.at(index);
     clrt_triangle o{};
+    o.index = static_cast<clrt_i32>(index);
     split3(t.v0 - shift, o.v0, o.v0_lo);
     split3(t.v1 - shift, o.v1, o.v1_lo);
     split3(t.v2 - shift, o.v2, o.v2_lo);
@@ -189,7 +197,7 @@ void pack_flat(const Scene& scene, const Vec3& shift, const TriangleSink& sink, 
 }  // namespace
 
 SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling,
-                     const TriangleSink& sink) {
+                     const TriangleSink& sink, const std::vector<clrt_i32>* triangle_order) {
   SceneData d;
   const Vec3 shift = packing_origin(scene, precision);
   clrt_params& p = d.params;
@@ -250,7 +258,7 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
   }
   p.n_planes = static_cast<clrt_i32>(scene.planes.size());
   p.n_triangles = static_cast<clrt_i32>(scene.triangles.size());
-  pack_flat(scene, shift, sink, d);
+  pack_flat(scene, shift, sink, triangle_order, d);
   return d;
 }
 

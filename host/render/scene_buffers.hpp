@@ -53,8 +53,10 @@ double outside_medium(const Scene& scene, size_t index);
 double camera_medium(const Scene& scene);
 
 // spp: N for N x N samples per pixel (clrt_params.spp, read at run time).
+// `triangle_order` (a Bvh's): the triangles packed in that order of their
+// scene indices, which must name each once (default: the scene's order).
 SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling = {},
-                     const TriangleSink& sink = {});
+                     const TriangleSink& sink = {}, const std::vector<clrt_i32>* triangle_order = nullptr);
 
 // The hierarchy's copies of the packed spheres for its leaves
 // (clrt_leaf_sphere): one per entry of `primitives` (a Bvh's), in its order,

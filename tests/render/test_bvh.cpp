@@ -202,6 +202,47 @@ TEST_CASE("the hierarchy holds every sphere once, in boxes that hold them", "[bv
   }
 }
 
+TEST_CASE("triangle entries name their place in the leaves' order, which names every triangle once", "[bvh]") {
+  const Scene scene = load_scene(clrt_test::source_path("scenes/large/mesh.json"));
+  REQUIRE(scene.triangles.size() > 1000);
+  const Bvh bvh = build_bvh(scene, Precision::Robust);
+  REQUIRE(bvh.triangle_order.size() == scene.triangles.size());
+  // the k-th triangle entry of the list names place k, and its leaf's box
+  // (the wide node's slot) holds the triangle that place names
+  std::vector<int> seen(scene.triangles.size(), 0);
+  size_t place = 0;
+  for (const clrt_wide_node& node : bvh.wide)
+    for (int slot = 0; slot < CLRT_BVH_WIDTH; ++slot)
+      for (int k = node.child[slot]; node.count[slot] > 0 && k < node.child[slot] + node.count[slot]; ++k) {
+        const clrt_i32 entry = bvh.primitives[size_t(k)];
+        if ((entry >> CLRT_PRIMITIVE_KIND_SHIFT) != CLRT_PRIMITIVE_TRIANGLE) continue;
+        const size_t at = size_t(entry & CLRT_PRIMITIVE_INDEX_MASK);
+        REQUIRE(at < bvh.triangle_order.size());
+        const size_t index = size_t(bvh.triangle_order[at]);
+        REQUIRE(index < scene.triangles.size());
+        ++seen[index];
+        const Triangle& t = scene.triangles[index];
+        for (const Vec3& v : {t.v0, t.v1, t.v2}) {
+          const double c[3] = {v.x, v.y, v.z};
+          for (int a = 0; a < 3; ++a) {
+            CHECK(double(node.lower[a][slot]) <= c[a]);
+            CHECK(c[a] <= double(node.upper[a][slot]));
+          }
+        }
+        ++place;
+      }
+  CHECK(place == scene.triangles.size());
+  CHECK(std::count(seen.begin(), seen.end(), 1) == std::ptrdiff_t(seen.size()));
+  // entries in list order name places 0, 1, 2, ...
+  clrt_i32 next = 0;
+  for (clrt_i32 entry : bvh.primitives)
+    if ((entry >> CLRT_PRIMITIVE_KIND_SHIFT) == CLRT_PRIMITIVE_TRIANGLE)
+      CHECK((entry & CLRT_PRIMITIVE_INDEX_MASK) == next++);
+  const std::vector<clrt_i32> slots = triangle_slots(bvh);
+  REQUIRE(slots.size() == scene.triangles.size());
+  for (size_t k = 0; k < slots.size(); ++k) CHECK(size_t(bvh.triangle_order[size_t(slots[k])]) == k);
+}
+
 TEST_CASE("the hierarchy is the same on any number of threads", "[bvh]") {
   // 40 000 spheres: subtrees of more than kParallelMinItems (8 192) spheres
   // on both sides of the first splits, so the threads do take parts.
