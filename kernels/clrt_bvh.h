@@ -242,7 +242,7 @@ CLRT_INLINE int entry_roots(int k, const vec3* O, const vec3* D SHEAR_ARG, lint 
     /* (entries name a triangle's place in the buffer, its record its id) */
     __global const clrt_triangle* tri = &scene->triangles[i];
     const int id = TRIANGLE_ID0(scene->params) + tri->index;
-    const lreal t = triangle_distance(O, shear, tri);
+    const lreal t = triangle_distance(O, shear, tri, TRIANGLE_LO(scene, i));
     *t1 = self == id ? (lreal)REAL_INFINITY : t;
     *t2 = *t1;
     return id;

@@ -65,11 +65,12 @@ CLRT_INLINE ray_shear shear_of(const vec3* Dp) {
 }
 
 /* Distance along D to triangle `tri` per lane; infinity on a miss. */
-CLRT_INLINE lreal triangle_distance(const vec3* O, const ray_shear* s, __global const clrt_triangle* tri) {
+CLRT_INLINE lreal triangle_distance(const vec3* O, const ray_shear* s, __global const clrt_triangle* tri,
+                                    __global const clrt_triangle_lo* lo) {
 #pragma OPENCL FP_CONTRACT OFF
-  const vec3 A = vsub(VEC3_FROM_HI_LO(tri->v0, tri->v0_lo), *O);
-  const vec3 B = vsub(VEC3_FROM_HI_LO(tri->v1, tri->v1_lo), *O);
-  const vec3 C = vsub(VEC3_FROM_HI_LO(tri->v2, tri->v2_lo), *O);
+  const vec3 A = vsub(VEC3_FROM_HI_LO(tri->v0, lo->v0_lo), *O);
+  const vec3 B = vsub(VEC3_FROM_HI_LO(tri->v1, lo->v1_lo), *O);
+  const vec3 C = vsub(VEC3_FROM_HI_LO(tri->v2, lo->v2_lo), *O);
   const lreal a_z = pick_axis(A, s->kz), b_z = pick_axis(B, s->kz), c_z = pick_axis(C, s->kz);
   const lreal a_x = pick_axis(A, s->kx) - s->sx * a_z, a_y = pick_axis(A, s->ky) - s->sy * a_z;
   const lreal b_x = pick_axis(B, s->kx) - s->sx * b_z, b_y = pick_axis(B, s->ky) - s->sy * b_z;

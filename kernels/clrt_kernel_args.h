@@ -35,6 +35,7 @@
   X(leaf_spheres, __global const clrt_leaf_sphere*, buffer) /* their spheres, in the entries' order */               \
   X(planes, __global const clrt_plane*, buffer)                                                                       \
   X(triangles, __global const clrt_triangle*, buffer)                                                                 \
+  X(triangles_lo, __global const clrt_triangle_lo*, buffer) /* their lo parts (fp64 builds) */                     \
   X(triangle_slots, __global const int*, buffer)      /* a triangle's place in them (-DCLRT_BVH: clrt_layout.h) */    \
   X(materials, __global const clrt_material*, buffer) /* of planes and triangles */                                   \
   X(status, __global int*, buffer)                    /* the device status word (clrt_device_status.h) */             \

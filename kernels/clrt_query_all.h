@@ -28,7 +28,7 @@ CLRT_INLINE void closest_flat(const vec3* O, const vec3* D, real tmin, real tmax
   const ray_shear shear = shear_of(D);
   for (int k = 0; k < CLRT_TRIANGLE_COUNT(params); ++k) {
     const int id = TRIANGLE_ID0(params) + k;
-    const lreal t = triangle_distance(O, &shear, &scene->triangles[k]);
+    const lreal t = triangle_distance(O, &shear, &scene->triangles[k], TRIANGLE_LO(scene, k));
     const lint nearer = (t < *closest) & (tmin < t) & (t < tmax) & (self != id);
     *closest = nearer ? t : *closest;
     *best = nearer ? (lint)id : *best;
@@ -54,7 +54,7 @@ CLRT_INLINE lint any_flat(const vec3* O, const vec3* D, real tmin, real tmax, li
   *tests += (lint)CLRT_TRIANGLE_COUNT(params);
   for (int k = 0; k < CLRT_TRIANGLE_COUNT(params); ++k) {
     if (ALL(blocked | !active)) break;
-    const lreal t = triangle_distance(O, &shear, &scene->triangles[k]);
+    const lreal t = triangle_distance(O, &shear, &scene->triangles[k], TRIANGLE_LO(scene, k));
     blocked |= (tmin < t) & (t < tmax) & (self != TRIANGLE_ID0(params) + k);
   }
 #endif

@@ -16,6 +16,7 @@ typedef struct scene_data {
   __global const clrt_leaf_sphere* leaf_spheres;
   __global const clrt_plane* planes;
   __global const clrt_triangle* triangles;
+  __global const clrt_triangle_lo* triangles_lo;
   __global const int* triangle_slots;
   __global const clrt_material* materials;
 } scene_data;
@@ -32,12 +33,20 @@ typedef struct scene_data {
 #else
 #define CLRT_TRIANGLE_COUNT(params) 0
 #endif
-/* The record of the triangle with index i in the scene's list: in the
- * hierarchy's order where the kernel walks one (clrt_layout.h). */
+/* The place of the triangle with index i in the scene's list among the
+ * triangle records: in the hierarchy's order where the kernel walks one
+ * (clrt_layout.h). */
 #ifdef CLRT_BVH
-#define TRIANGLE_RECORD(scene, i) (&(scene)->triangles[(scene)->triangle_slots[i]])
+#define TRIANGLE_SLOT(scene, i) ((scene)->triangle_slots[i])
 #else
-#define TRIANGLE_RECORD(scene, i) (&(scene)->triangles[i])
+#define TRIANGLE_SLOT(scene, i) (i)
+#endif
+/* The lo parts of the triangle record at `slot`, which only fp64 builds
+ * read (VEC3_FROM_HI_LO drops them in float builds: a null never read). */
+#if CLRT_PRECISION == CLRT_PRECISION_FP64
+#define TRIANGLE_LO(scene, slot) (&(scene)->triangles_lo[slot])
+#else
+#define TRIANGLE_LO(scene, slot) ((__global const clrt_triangle_lo*)0)
 #endif
 /* The first id of each flat kind. */
 #define PLANE_ID0(params) CLRT_SPHERE_COUNT(params)

@@ -44,9 +44,11 @@ CLRT_INLINE void flat_surface(int id, lint is_hit, const scene_data* scene, hit_
     material = p->material;
   } else {
 #if CLRT_HAS_TRIANGLES
-    __global const clrt_triangle* tri = TRIANGLE_RECORD(scene, id - TRIANGLE_ID0(params));
-    const vec3 v0 = VEC3_FROM_HI_LO(tri->v0, tri->v0_lo);
-    const vec3 e1 = vsub(VEC3_FROM_HI_LO(tri->v1, tri->v1_lo), v0), e2 = vsub(VEC3_FROM_HI_LO(tri->v2, tri->v2_lo), v0);
+    const int slot = TRIANGLE_SLOT(scene, id - TRIANGLE_ID0(params));
+    __global const clrt_triangle* tri = &scene->triangles[slot];
+    __global const clrt_triangle_lo* lo = TRIANGLE_LO(scene, slot);
+    const vec3 v0 = VEC3_FROM_HI_LO(tri->v0, lo->v0_lo);
+    const vec3 e1 = vsub(VEC3_FROM_HI_LO(tri->v1, lo->v1_lo), v0), e2 = vsub(VEC3_FROM_HI_LO(tri->v2, lo->v2_lo), v0);
     n = v3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
     material = tri->material;
 #else

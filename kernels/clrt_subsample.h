@@ -54,7 +54,8 @@ CLRT_INLINE lreal primitive_distance(const vec3* O, const vec3* D, real tmin, in
 #if CLRT_HAS_TRIANGLES
   {
     const ray_shear shear = shear_of(D);
-    const lreal d = triangle_distance(O, &shear, TRIANGLE_RECORD(scene, id - TRIANGLE_ID0(params)));
+    const int slot = TRIANGLE_SLOT(scene, id - TRIANGLE_ID0(params));
+    const lreal d = triangle_distance(O, &shear, &scene->triangles[slot], TRIANGLE_LO(scene, slot));
     t = ((tmin < d) & (d < t)) ? d : t;
   }
 #endif

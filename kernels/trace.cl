@@ -50,7 +50,7 @@ __kernel void render(CLRT_RENDER_PARAMS) {
   const pixel_block block =
       block_of((int)get_global_id(0), (int)get_global_id(1), first_column, column_step, tile_w, tile_h);
   if (!block_in_tile(&block)) return;
-  const scene_data scene = {params, spheres, lights, nodes, primitives, leaf_spheres, planes, triangles, triangle_slots, materials};
+  const scene_data scene = {params, spheres, lights, nodes, primitives, leaf_spheres, planes, triangles, triangles_lo, triangle_slots, materials};
   const camera_view view = camera_of(params);
   /* the canvas point of each lane's pixel */
   lint x, y;
@@ -81,7 +81,7 @@ __kernel void camera_hits(CLRT_RENDER_PARAMS) {
   const pixel_block block =
       block_of((int)get_global_id(0), (int)get_global_id(1), first_column, column_step, tile_w, tile_h);
   if (!block_in_tile(&block)) return;
-  const scene_data scene = {params, spheres, lights, nodes, primitives, leaf_spheres, planes, triangles, triangle_slots, materials};
+  const scene_data scene = {params, spheres, lights, nodes, primitives, leaf_spheres, planes, triangles, triangles_lo, triangle_slots, materials};
   store_camera_hits(&block, x0, y0, &scene, classes, counters);
   CHECK_LOOP_LIMIT(params, status);
 }

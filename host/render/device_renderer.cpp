@@ -65,13 +65,19 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
     check_local_size();
   }
   auto t0 = std::chrono::steady_clock::now();
-  // the triangles straight into their device buffer, a chunk at a time
-  triangles_ =
-      cl::Buffer(context_, CL_MEM_READ_ONLY, std::max<size_t>(1, scene.triangles.size()) * sizeof(clrt_triangle));
+  // the triangles straight into their device buffer, a chunk at a time;
+  // their lo parts only for the variant that reads them (clrt_layout.h)
+  const size_t triangle_count = std::max<size_t>(1, scene.triangles.size());
+  const bool with_lo = config_.precision == Precision::Fp64;
+  triangles_ = cl::Buffer(context_, CL_MEM_READ_ONLY, triangle_count * sizeof(clrt_triangle));
+  triangles_lo_ = cl::Buffer(context_, CL_MEM_READ_ONLY, (with_lo ? triangle_count : 1) * sizeof(clrt_triangle_lo));
   size_t triangles_written = 0;
-  const TriangleSink to_device = [&](const clrt_triangle* triangles, size_t count) {
+  const TriangleSink to_device = [&](const clrt_triangle* triangles, const clrt_triangle_lo* lo, size_t count) {
     queue_.enqueueWriteBuffer(triangles_, CL_TRUE, triangles_written * sizeof(clrt_triangle),
                               count * sizeof(clrt_triangle), triangles);
+    if (with_lo)
+      queue_.enqueueWriteBuffer(triangles_lo_, CL_TRUE, triangles_written * sizeof(clrt_triangle_lo),
+                                count * sizeof(clrt_triangle_lo), lo);
     triangles_written += count;
   };
   // (in the hierarchy's order where the kernel walks one: clrt_layout.h)
@@ -278,6 +284,7 @@ void DeviceRenderer::set_tile_args(cl::Kernel& kernel, const ResultSlot& slot, i
   set_arg<RenderArg::leaf_spheres>(kernel, leaf_spheres_);
   set_arg<RenderArg::planes>(kernel, planes_);
   set_arg<RenderArg::triangles>(kernel, triangles_);
+  set_arg<RenderArg::triangles_lo>(kernel, triangles_lo_);
   set_arg<RenderArg::triangle_slots>(kernel, triangle_slots_);
   set_arg<RenderArg::materials>(kernel, materials_);
   set_arg<RenderArg::status>(kernel, slot.status);

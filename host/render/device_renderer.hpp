@@ -178,8 +178,8 @@ class DeviceRenderer {
   cl::CommandQueue transfer_queue_;  // read path: results read here while the next kernel runs
   BuiltProgram built_;
   std::string source_;
-  cl::Buffer params_, spheres_, lights_, nodes_, primitives_, leaf_spheres_, planes_, triangles_, triangle_slots_,
-      materials_;
+  cl::Buffer params_, spheres_, lights_, nodes_, primitives_, leaf_spheres_, planes_, triangles_, triangles_lo_,
+      triangle_slots_, materials_;
   bool map_results_ = false;  // asked for and CL_DEVICE_HOST_UNIFIED_MEMORY: mapped, not read
   bool overlap_ = true;
   bool events_plausible_ = true;

@@ -25,7 +25,8 @@ static_assert(sizeof(clrt_light) == 48, "clrt_light size");
 static_assert(sizeof(clrt_params) == 188, "clrt_params size");
 static_assert(sizeof(clrt_material) == 32, "clrt_material size");
 static_assert(sizeof(clrt_plane) == 64, "clrt_plane size");
-static_assert(sizeof(clrt_triangle) == 96, "clrt_triangle size");
+static_assert(sizeof(clrt_triangle) == 48, "clrt_triangle size");
+static_assert(sizeof(clrt_triangle_lo) == 48, "clrt_triangle_lo size");
 static_assert(sizeof(clrt_ray_counts) == 20, "clrt_ray_counts size");
 static_assert(sizeof(clrt_bvh_node) == 32, "clrt_bvh_node size");
 static_assert(sizeof(clrt_wide_node) == 32 * CLRT_BVH_WIDTH, "clrt_wide_node size");
@@ -166,28 +167,36 @@ void pack_flat(const Scene& scene, const Vec3& shift, const TriangleSink& sink, 
   // in chunks: kept, or handed to the sink (and dropped) as each fills
   ContentHash digest;
   std::vector<clrt_triangle> chunk;
+  std::vector<clrt_triangle_lo> chunk_lo;
   chunk.reserve(std::min(scene.triangles.size(), kTriangleChunk));
+  chunk_lo.reserve(chunk.capacity());
   const auto flush = [&] {
     digest.add(chunk);
-    if (sink)
-      sink(chunk.data(), chunk.size());
-    else
+    digest.add(chunk_lo);
+    if (sink) {
+      sink(chunk.data(), chunk_lo.data(), chunk.size());
+    } else {
       d.triangles.insert(d.triangles.end(), chunk.begin(), chunk.end());
+      d.triangles_lo.insert(d.triangles_lo.end(), chunk_lo.begin(), chunk_lo.end());
+    }
     chunk.clear();
+    chunk_lo.clear();
   };
-  if (!sink) d.triangles.reserve(scene.triangles.size());
+  if (!sink) d.triangles.reserve(scene.triangles.size()), d.triangles_lo.reserve(scene.triangles.size());
   if (order && order->size() != scene.triangles.size())
     throw std::logic_error("pack_scene: a triangle order of another scene");
   for (size_t k = 0; k < scene.triangles.size(); ++k) {
     const size_t index = order ? size_t(order->at(k)) : k;
     const Triangle& t = scene.triangles.at(index);
     clrt_triangle o{};
+    clrt_triangle_lo lo{};
     o.index = static_cast<clrt_i32>(index);
-    split3(t.v0 - shift, o.v0, o.v0_lo);
-    split3(t.v1 - shift, o.v1, o.v1_lo);
-    split3(t.v2 - shift, o.v2, o.v2_lo);
+    split3(t.v0 - shift, o.v0, lo.v0_lo);
+    split3(t.v1 - shift, o.v1, lo.v1_lo);
+    split3(t.v2 - shift, o.v2, lo.v2_lo);
     o.material = material(t.material);
     chunk.push_back(o);
+    chunk_lo.push_back(lo);
     if (chunk.size() == kTriangleChunk) flush();
   }
   if (!chunk.empty()) flush();

@@ -18,15 +18,17 @@ struct SceneData {
   std::vector<clrt_light> lights;
   std::vector<clrt_material> materials;  // of the planes and triangles
   std::vector<clrt_plane> planes;
-  std::vector<clrt_triangle> triangles;  // empty where pack_scene() gave them to a sink
-  uint64_t triangles_digest = 0;         // of the packed triangles (ContentHash), kept or not
+  std::vector<clrt_triangle> triangles;        // empty where pack_scene() gave them to a sink
+  std::vector<clrt_triangle_lo> triangles_lo;  // their lo parts, likewise
+  uint64_t triangles_digest = 0;               // of the packed triangles (ContentHash), kept or not
 };
 
 // Where pack_scene() puts the packed triangles: SceneData::triangles when
 // empty; else this sink gets them in order, kTriangleChunk at most a call,
 // so that a caller can write them to a device without holding them all
-// (the upload of 4 million held their 384 MB twice: docs/results/meshes.md).
-using TriangleSink = std::function<void(const clrt_triangle* triangles, size_t count)>;
+// (the upload of 4 million held them twice: docs/results/meshes.md).
+using TriangleSink =
+    std::function<void(const clrt_triangle* triangles, const clrt_triangle_lo* triangles_lo, size_t count)>;
 constexpr size_t kTriangleChunk = size_t(1) << 16;
 
 // Robust and fast modes are camera-relative: the host subtracts the camera

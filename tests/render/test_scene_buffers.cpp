@@ -109,15 +109,25 @@ TEST_CASE("pack_scene: a triangle sink gets every triangle in order, in chunks, 
   const SceneData kept = pack_scene(scene, Precision::Robust, 64, 48, 3);
   REQUIRE(kept.triangles.size() == count);
   std::vector<clrt_triangle> given;
+  std::vector<clrt_triangle_lo> given_lo;
   std::vector<size_t> chunks;
-  const SceneData sunk = pack_scene(scene, Precision::Robust, 64, 48, 3, {}, [&](const clrt_triangle* t, size_t n) {
-    chunks.push_back(n);
-    given.insert(given.end(), t, t + n);
-  });
+  const SceneData sunk = pack_scene(scene, Precision::Robust, 64, 48, 3, {},
+                                    [&](const clrt_triangle* t, const clrt_triangle_lo* lo, size_t n) {
+                                      chunks.push_back(n);
+                                      given.insert(given.end(), t, t + n);
+                                      given_lo.insert(given_lo.end(), lo, lo + n);
+                                    });
   CHECK(sunk.triangles.empty());
   CHECK(chunks == std::vector<size_t>{kTriangleChunk, kTriangleChunk, 123});
   REQUIRE(given.size() == count);
   CHECK(std::memcmp(given.data(), kept.triangles.data(), count * sizeof(clrt_triangle)) == 0);
+  REQUIRE(given_lo.size() == count);
+  REQUIRE(kept.triangles_lo.size() == count);
+  CHECK(std::memcmp(given_lo.data(), kept.triangles_lo.data(), count * sizeof(clrt_triangle_lo)) == 0);
+  // the lo parts are the hi parts' remainders: 1/3 is no float
+  CHECK(kept.triangles_lo[5].v1_lo[1] != 0);
+  CHECK(double(kept.triangles[5].v1[1]) + double(kept.triangles_lo[5].v1_lo[1]) == Approx(1.0 / 3).epsilon(1e-14));
+  CHECK(kept.triangles[5].index == 5);
   CHECK(sunk.triangles_digest == kept.triangles_digest);
   CHECK(sunk.materials.size() == kept.materials.size());
   // the digest sees a change in any triangle
@@ -182,7 +192,7 @@ TEST_CASE("the host's layout field list names every struct member once", "[buffe
   }
   CHECK(bytes == int(sizeof(clrt_sphere) + sizeof(clrt_light) + sizeof(clrt_params) + sizeof(clrt_material) +
                      sizeof(clrt_plane) + sizeof(clrt_triangle) + sizeof(clrt_ray_counts) + sizeof(clrt_bvh_node) +
-                     sizeof(clrt_wide_node) + sizeof(clrt_leaf_sphere)));
+                     sizeof(clrt_wide_node) + sizeof(clrt_leaf_sphere) + sizeof(clrt_triangle_lo)));
   CHECK(kLayoutFields[0].offset == 0);
   CHECK(std::string(kLayoutFields[0].type) == "clrt_sphere");
   CHECK(std::string(std::prev(std::end(kLayoutFields))->type) == "clrt_leaf_sphere");
