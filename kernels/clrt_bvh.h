@@ -85,9 +85,9 @@ CLRT_INLINE lint child_overlap(__global const clrt_wide_node* node, int k, const
   return (enter <= leave) & (leave >= tmin) & (enter <= limit);
 }
 
-#if CLRT_LANES == 1
 /* One ray, every child of a node at once: the same slab test as above on
- * CLRT_BVH_WIDTH-wide vectors of the precision's scalar. */
+ * CLRT_BVH_WIDTH-wide vectors of the precision's scalar (the one-ray walk,
+ * and a block's rays that walk alone: below). */
 #if CLRT_BVH_WIDTH == 4
 #define WIDE_LOAD(p) vload4(0, p)
 #define WIDE_STORE(v, p) vstore4(v, 0, p)
@@ -124,16 +124,18 @@ typedef int8 wide_mask;
 #error "CLRT_BVH_WIDTH must be 4 or 8"
 #endif
 
-/* The children whose box the ray may meet within (tmin, limit) (hit[k]
- * nonzero) and their widened entry distances. */
-CLRT_INLINE void node_children(__global const clrt_wide_node* node, const box_origins* O, const vec3* inverse,
-                               real tmin, lreal limit, lint active, real* enter_out, int* hit_out) {
-  const wide_real x0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[0])) - O->lower.x) * (*inverse).x;
-  const wide_real x1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[0])) - O->upper.x) * (*inverse).x;
-  const wide_real y0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[1])) - O->lower.y) * (*inverse).y;
-  const wide_real y1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[1])) - O->upper.y) * (*inverse).y;
-  const wide_real z0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[2])) - O->lower.z) * (*inverse).z;
-  const wide_real z1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[2])) - O->upper.z) * (*inverse).z;
+/* The children whose box one ray may meet within (tmin, limit) (hit[k]
+ * nonzero) and their widened entry distances; the ray's padded origins
+ * (lx, ly, lz for the lower planes, ux, uy, uz for the upper) and its
+ * reciprocal direction (ix, iy, iz). */
+CLRT_INLINE void ray_children(__global const clrt_wide_node* node, real lx, real ly, real lz, real ux, real uy, real uz,
+                              real ix, real iy, real iz, real tmin, real limit, real* enter_out, int* hit_out) {
+  const wide_real x0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[0])) - lx) * ix;
+  const wide_real x1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[0])) - ux) * ix;
+  const wide_real y0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[1])) - ly) * iy;
+  const wide_real y1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[1])) - uy) * iy;
+  const wide_real z0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[2])) - lz) * iz;
+  const wide_real z1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[2])) - uz) * iz;
   wide_real enter = BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMIN(z0, z1));
   wide_real leave = BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMAX(z0, z1));
   const wide_real slack = (fabs(enter) + fabs(leave)) * CLRT_BOX_SLACK;
@@ -143,6 +145,13 @@ CLRT_INLINE void node_children(__global const clrt_wide_node* node, const box_or
   const wide_mask hit = (enter <= leave) & (leave >= tmin) & (enter <= limit) & used;
   WIDE_STORE(enter, enter_out);
   WIDE_STORE(WIDE_MASK_TO_INT(hit), hit_out);
+}
+
+#if CLRT_LANES == 1
+CLRT_INLINE void node_children(__global const clrt_wide_node* node, const box_origins* O, const vec3* inverse,
+                               real tmin, lreal limit, lint active, real* enter_out, int* hit_out) {
+  ray_children(node, O->lower.x, O->lower.y, O->lower.z, O->upper.x, O->upper.y, O->upper.z, (*inverse).x, (*inverse).y,
+               (*inverse).z, tmin, limit, enter_out, hit_out);
   (void)active;
 }
 #else
@@ -160,9 +169,17 @@ CLRT_INLINE real lane_min_real(lreal x) {
   return BMIN(h2.x, h2.y);
 }
 
-/* A block of rays, child after child: hit[k] when a lane of `active` may
- * meet child k's box within its interval; enter[k] the smallest widened
- * entry distance of those lanes. */
+/* A lane mask as bits (lane i, bit i) and back. */
+CLRT_INLINE int lane_bits(lint lanes) {
+  return LANE_OR(lanes & ((lint)1 << LANE_IOTA));
+}
+CLRT_INLINE lint bits_lanes(int bits) {
+  return (((lint)bits >> LANE_IOTA) & 1) != 0;
+}
+
+/* A block of rays, child after child: hit[k] is the bits of the lanes of
+ * `active` that may meet child k's box within their interval (0: none);
+ * enter[k] the smallest widened entry distance of those lanes. */
 CLRT_INLINE void node_children(__global const clrt_wide_node* node, const box_origins* O, const vec3* inverse,
                                real tmin, lreal limit, lint active, real* enter_out, int* hit_out) {
   for (int k = 0; k < CLRT_BVH_WIDTH; ++k) {
@@ -171,42 +188,59 @@ CLRT_INLINE void node_children(__global const clrt_wide_node* node, const box_or
     lreal enter;
     const lint lanes = active & child_overlap(node, k, O, inverse, tmin, limit, &enter);
     if (!ANY(lanes)) continue;
-    hit_out[k] = 1;
+    hit_out[k] = lane_bits(lanes);
     enter_out[k] = lane_min_real(lanes ? enter : (lreal)REAL_INFINITY);
   }
 }
 #endif
 
-/* Pushes child reference `child` of a node with entry distance `enter` onto the
- * stack, keeping the children pushed since `base` sorted farthest first
- * (insertion: at most CLRT_BVH_WIDTH of them). */
-CLRT_INLINE void push_sorted(int child, real enter, int base, int* stack, real* stack_enter, int* top) {
-  int k = (*top)++;
-  while (k > base && stack_enter[k - 1] < enter) {
-    stack[k] = stack[k - 1];
-    stack_enter[k] = stack_enter[k - 1];
-    --k;
+/* The stack of a walk: the children it has yet to visit, each with its
+ * entry distance and, in a block walk, the bits of the lanes that met its
+ * box. */
+#if CLRT_LANES > 1
+#define STACK_LANES(statement) statement
+#else
+#define STACK_LANES(statement)
+#endif
+typedef struct walk_stack {
+  int child[CLRT_BVH_STACK];
+  real enter[CLRT_BVH_STACK];
+  STACK_LANES(int lanes[CLRT_BVH_STACK];)
+} walk_stack;
+
+/* Pushes the children of node `index` that hit[] names, keeping those pushed
+ * since the call farthest first (insertion: at most CLRT_BVH_WIDTH of them).
+ * Inner children are pushed as their node index, leaves as ~(index *
+ * CLRT_BVH_WIDTH + slot): their entries are read only when popped
+ * (leaf_entries()), and a leaf popped beyond the closest hit is never read. */
+CLRT_INLINE void push_hits(__global const clrt_wide_node* node, int index, const real* enter, const int* hit,
+                           walk_stack* stack, int* top) {
+  const int base = *top;
+  for (int slot = 0; slot < CLRT_BVH_WIDTH; ++slot) {
+    if (!hit[slot]) continue;
+    const int child = node->count[slot] > 0 ? ~(index * CLRT_BVH_WIDTH + slot) : node->child[slot];
+    int k = (*top)++;
+    while (k > base && stack->enter[k - 1] < enter[slot]) {
+      stack->child[k] = stack->child[k - 1];
+      stack->enter[k] = stack->enter[k - 1];
+      STACK_LANES(stack->lanes[k] = stack->lanes[k - 1]);
+      --k;
+    }
+    stack->child[k] = child;
+    stack->enter[k] = enter[slot];
+    STACK_LANES(stack->lanes[k] = hit[slot]);
   }
-  stack[k] = child;
-  stack_enter[k] = enter;
 }
 
 /* One step of either walk: tests node `index`'s children against the lanes
- * of `active` and pushes those hit, nearest on top, each with its entry
- * distance. Inner children are pushed as their node index, leaves as
- * ~(index * CLRT_BVH_WIDTH + slot): their entries are read only when popped
- * (leaf_entries()), and a leaf popped beyond the closest hit is never read. */
-CLRT_INLINE void push_children(__global const clrt_wide_node* nodes, int index, const box_origins* O, const vec3* inverse,
-                               real tmin, lreal limit, lint active, int* stack, real* stack_enter, int* top) {
+ * of `active` and pushes those hit, nearest on top. */
+CLRT_INLINE void push_children(__global const clrt_wide_node* nodes, int index, const box_origins* O,
+                               const vec3* inverse, real tmin, lreal limit, lint active, walk_stack* stack, int* top) {
   __global const clrt_wide_node* node = &nodes[index];
   real enter[CLRT_BVH_WIDTH];
   int hit[CLRT_BVH_WIDTH];
   node_children(node, O, inverse, tmin, limit, active, enter, hit);
-  const int base = *top;
-  for (int k = 0; k < CLRT_BVH_WIDTH; ++k)
-    if (hit[k])
-      push_sorted(node->count[k] > 0 ? ~(index * CLRT_BVH_WIDTH + k) : node->child[k], enter[k], base, stack,
-                  stack_enter, top);
+  push_hits(node, index, enter, hit, stack, top);
 }
 
 /* The primitive entries [*first, *first + *count) of the leaf that stack
@@ -289,6 +323,110 @@ CLRT_INLINE lint any_in_leaf(int first, int count, const vec3* O, const vec3* D 
   return blocked;
 }
 
+#if CLRT_LANES > 1
+/* A block's rays part ways after a bounce: below a node that few of its
+ * lanes' rays meet (CLRT_SOLO_LANES or fewer), a block walk would test each
+ * box lane after lane (CLRT_BVH_WIDTH slab tests of the block) for one or
+ * two rays. Those lanes walk that subtree alone instead, one ray at a time,
+ * every child of a node in one test (ray_children()), as the one-ray walk
+ * does; a leaf's primitives are still tested against every lane's ray (it
+ * costs the one ray's price, and a hit found for another lane is as valid
+ * as any: the closest hit is the least over every primitive a lane's walk
+ * must test, and more tests only shorten the walk). */
+#ifndef CLRT_SOLO_LANES
+#ifdef CLRT_LOOP_LIMIT_PROBE
+/* (llvmpipe ends a work-item after 65 535 loop iterations in all, and a
+ * lane's walk of its own adds its iterations to the block's: 10 000
+ * spheres at 16 lanes ran past it) */
+#define CLRT_SOLO_LANES 0
+#else
+/* 1, 2, 4 and 8 measured within the machine's noise of each other; 16 (every
+ * ray alone below the root) was slower (docs/results/wide-hierarchy.md) */
+#define CLRT_SOLO_LANES 2
+#endif
+#endif
+#define LANE_OF(vector, j) (((const real*)&(vector))[j])
+#define LINT_LANE(vector, j) (((const int*)&(vector))[j])
+
+/* Lane j's ray, for ray_children(). */
+typedef struct solo_ray {
+  real lx, ly, lz, ux, uy, uz, ix, iy, iz;
+} solo_ray;
+CLRT_INLINE solo_ray solo_ray_of(const box_origins* O, const vec3* inverse, int j) {
+  solo_ray r;
+  r.lx = LANE_OF(O->lower.x, j);
+  r.ly = LANE_OF(O->lower.y, j);
+  r.lz = LANE_OF(O->lower.z, j);
+  r.ux = LANE_OF(O->upper.x, j);
+  r.uy = LANE_OF(O->upper.y, j);
+  r.uz = LANE_OF(O->upper.z, j);
+  r.ix = LANE_OF((*inverse).x, j);
+  r.iy = LANE_OF((*inverse).y, j);
+  r.iz = LANE_OF((*inverse).z, j);
+  return r;
+}
+
+/* Lane j's closest-hit walk of the subtree under node `root`, on the stack
+ * above `base`. */
+CLRT_INLINE void solo_closest(int root, int j, const solo_ray* r, const vec3* O, const vec3* D SHEAR_ARG, real tmin,
+                              real tmax, lint self, const scene_data* scene, lreal* closest, lint* best, lint* tests,
+                              walk_stack* stack, int base) {
+  __global const clrt_wide_node* nodes = scene->nodes;
+  int top = base, index = root;
+  for (;;) {
+    real enter[CLRT_BVH_WIDTH];
+    int hit[CLRT_BVH_WIDTH];
+    ray_children(&nodes[index], r->lx, r->ly, r->lz, r->ux, r->uy, r->uz, r->ix, r->iy, r->iz, tmin,
+                 BMIN(LANE_OF(*closest, j), tmax), enter, hit);
+    push_hits(&nodes[index], index, enter, hit, stack, &top);
+    index = -1;
+    while (top > base) {
+      --top;
+      if (stack->enter[top] > LANE_OF(*closest, j)) continue;
+      if (stack->child[top] >= 0) {
+        index = stack->child[top];
+        break;
+      }
+      int first, count;
+      leaf_entries(nodes, stack->child[top], &first, &count);
+      closest_in_leaf(first, count, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, closest, best, tests);
+    }
+    if (index < 0) return;
+  }
+}
+
+/* Lane j's any-hit walk of the subtree under node `root`, on the stack
+ * above `base`: it ends when lane j is blocked. */
+CLRT_INLINE void solo_any(int root, int j, const solo_ray* r, const vec3* O, const vec3* D SHEAR_ARG, real tmin,
+                          real tmax, lint self, const scene_data* scene, lint* blocked, lint* tests, walk_stack* stack,
+                          int base) {
+  __global const clrt_wide_node* nodes = scene->nodes;
+  int top = base, index = root;
+  for (;;) {
+    real enter[CLRT_BVH_WIDTH];
+    int hit[CLRT_BVH_WIDTH];
+    ray_children(&nodes[index], r->lx, r->ly, r->lz, r->ux, r->uy, r->uz, r->ix, r->iy, r->iz, tmin, tmax, enter, hit);
+    push_hits(&nodes[index], index, enter, hit, stack, &top);
+    index = -1;
+    while (top > base) {
+      --top;
+      if (stack->child[top] >= 0) {
+        index = stack->child[top];
+        break;
+      }
+      int first, count;
+      leaf_entries(nodes, stack->child[top], &first, &count);
+      *blocked |= any_in_leaf(first, count, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, tests);
+      if (LINT_LANE(*blocked, j)) return;
+    }
+    if (index < 0) return;
+  }
+}
+
+/* The lowest set bit's index, and the bits without it. */
+#define LOWEST_BIT(bits) (31 - clz((bits) & -(bits)))
+#endif
+
 /* Closest hit in (tmin, tmax) per lane: the primitive id or -1. */
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
                                       const scene_data* scene, lreal* t_out, lint* tests) {
@@ -305,24 +443,36 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
 #if CLRT_HAS_TRIANGLES
   const ray_shear shear = shear_of(D);
 #endif
-  int stack[CLRT_BVH_STACK];
-  real stack_enter[CLRT_BVH_STACK];
+  walk_stack stack;
   int top = 0, index = 0;
+  lint lanes = MASK_TRUE; /* those whose ray met node `index`'s box */
   for (;;) {
-    push_children(nodes, index, &origins, &inverse, tmin, BMIN(closest, (lreal)tmax), MASK_TRUE, stack, stack_enter,
-                  &top);
+    push_children(nodes, index, &origins, &inverse, tmin, BMIN(closest, (lreal)tmax), lanes, &stack, &top);
     /* the nearest child still worth a visit (beyond every lane's closest
      * hit, none is): leaves are tested on the way to it */
     index = -1;
     while (top > 0) {
       --top;
-      if (!ANY(stack_enter[top] <= closest)) continue;
-      if (stack[top] >= 0) {
-        index = stack[top];
+      if (!ANY(stack.enter[top] <= closest)) continue;
+      if (stack.child[top] >= 0) {
+#if CLRT_LANES > 1
+        int bits = stack.lanes[top];
+        if (popcount(bits) <= CLRT_SOLO_LANES) {
+          const int child = stack.child[top]; /* (each walk reuses its slot) */
+          for (; bits != 0; bits &= bits - 1) {
+            const int j = LOWEST_BIT(bits);
+            const solo_ray r = solo_ray_of(&origins, &inverse, j);
+            solo_closest(child, j, &r, O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best, tests, &stack, top);
+          }
+          continue;
+        }
+        lanes = bits_lanes(bits);
+#endif
+        index = stack.child[top];
         break;
       }
       int first, count;
-      leaf_entries(nodes, stack[top], &first, &count);
+      leaf_entries(nodes, stack.child[top], &first, &count);
       closest_in_leaf(first, count, O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best, tests);
     }
     if (index < 0) break;
@@ -347,24 +497,40 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
 #else
   lint blocked = 0;
 #endif
-  int stack[CLRT_BVH_STACK];
-  real stack_enter[CLRT_BVH_STACK];
+  walk_stack stack;
   int top = 0, index = 0;
+  lint lanes = MASK_TRUE; /* those whose ray met node `index`'s box */
   for (;;) {
-    const lint open = active & !blocked;
+    const lint open = active & !blocked & lanes;
     if (!ANY(open)) break;
     /* nearest first, as the closest-hit walk: a blocker near the surface
      * (the usual one) is found before the far subtrees are walked */
-    push_children(nodes, index, &origins, &inverse, tmin, (lreal)tmax, open, stack, stack_enter, &top);
+    push_children(nodes, index, &origins, &inverse, tmin, (lreal)tmax, open, &stack, &top);
     index = -1;
     while (top > 0) {
       --top;
-      if (stack[top] >= 0) {
-        index = stack[top];
+      if (stack.child[top] >= 0) {
+#if CLRT_LANES > 1
+        int bits = stack.lanes[top] & lane_bits(active & !blocked);
+        if (bits == 0) continue;
+        if (popcount(bits) <= CLRT_SOLO_LANES) {
+          const int child = stack.child[top]; /* (each walk reuses its slot) */
+          for (; bits != 0; bits &= bits - 1) {
+            const int j = LOWEST_BIT(bits);
+            if (LINT_LANE(blocked, j)) continue;
+            const solo_ray r = solo_ray_of(&origins, &inverse, j);
+            solo_any(child, j, &r, O, D SHEAR_PASS, tmin, tmax, self, scene, &blocked, tests, &stack, top);
+          }
+          if (ALL(blocked | !active)) return blocked;
+          continue;
+        }
+        lanes = bits_lanes(bits);
+#endif
+        index = stack.child[top];
         break;
       }
       int first, count;
-      leaf_entries(nodes, stack[top], &first, &count);
+      leaf_entries(nodes, stack.child[top], &first, &count);
       blocked |= any_in_leaf(first, count, O, D SHEAR_PASS, tmin, tmax, self, scene, tests);
       if (ALL(blocked | !active)) return blocked;
     }
