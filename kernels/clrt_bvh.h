@@ -17,7 +17,9 @@
  * One ray per work-item (CLRT_LANES 1) tests a node's children together,
  * one SIMD lane per child (float4 or float8). A block of lanes tests the
  * children one after the other, one SIMD lane per ray, and enters a child
- * that any lane needs. Either way the hit children, leaves and inner nodes
+ * that any lane needs, for the lanes that met it; below a node that only
+ * one or two lanes met, each of them walks alone (solo_closest(),
+ * solo_any()). Either way the hit children, leaves and inner nodes
  * alike, are pushed nearest last, each with its entry distance (the smallest
  * over the lanes that meet it), so the nearest is visited first and a popped
  * child beyond the closest hit is skipped. Shadow rays take any hit and end
