@@ -158,6 +158,10 @@ typedef struct clrt_triangle_lo {
   clrt_f32 v2_lo[3];
   clrt_f32 pad[3];
 } clrt_triangle_lo; /* 48 bytes */
+/* Whether the variant of CLRT_PRECISION_* code `precision` reads them: the
+ * one rule, read by the host (which uploads them only then:
+ * DeviceRenderer::prepare()) and the kernel (TRIANGLE_LO, clrt_scene.h). */
+#define CLRT_READS_TRIANGLE_LO(precision) ((precision) == CLRT_PRECISION_FP64)
 
 /* The AOV layers buffer (-DCLRT_OUT_LAYERS, kernels/clrt_layers.h): floats
  * per pixel, and where each layer starts among them: the distance along the

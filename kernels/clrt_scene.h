@@ -41,9 +41,10 @@ typedef struct scene_data {
 #else
 #define TRIANGLE_SLOT(scene, i) (i)
 #endif
-/* The lo parts of the triangle record at `slot`, which only fp64 builds
- * read (VEC3_FROM_HI_LO drops them in float builds: a null never read). */
-#if CLRT_PRECISION == CLRT_PRECISION_FP64
+/* The lo parts of the triangle record at `slot`, where the variant reads
+ * them (CLRT_READS_TRIANGLE_LO); elsewhere a null that is never read: the
+ * variants without them are float ones, whose VEC3_FROM_HI_LO drops lo. */
+#if CLRT_READS_TRIANGLE_LO(CLRT_PRECISION)
 #define TRIANGLE_LO(scene, slot) (&(scene)->triangles_lo[slot])
 #else
 #define TRIANGLE_LO(scene, slot) ((__global const clrt_triangle_lo*)0)

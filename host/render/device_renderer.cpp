@@ -68,7 +68,7 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   // the triangles straight into their device buffer, a chunk at a time;
   // their lo parts only for the variant that reads them (clrt_layout.h)
   const size_t triangle_count = std::max<size_t>(1, scene.triangles.size());
-  const bool with_lo = config_.precision == Precision::Fp64;
+  const bool with_lo = CLRT_READS_TRIANGLE_LO(kernel_code(config_.precision));
   triangles_ = cl::Buffer(context_, CL_MEM_READ_ONLY, triangle_count * sizeof(clrt_triangle));
   triangles_lo_ = cl::Buffer(context_, CL_MEM_READ_ONLY, (with_lo ? triangle_count : 1) * sizeof(clrt_triangle_lo));
   size_t triangles_written = 0;

@@ -182,7 +182,10 @@ void pack_flat(const Scene& scene, const Vec3& shift, const TriangleSink& sink, 
     chunk.clear();
     chunk_lo.clear();
   };
-  if (!sink) d.triangles.reserve(scene.triangles.size()), d.triangles_lo.reserve(scene.triangles.size());
+  if (!sink) {
+    d.triangles.reserve(scene.triangles.size());
+    d.triangles_lo.reserve(scene.triangles.size());
+  }
   if (order && order->size() != scene.triangles.size())
     throw std::logic_error("pack_scene: a triangle order of another scene");
   for (size_t k = 0; k < scene.triangles.size(); ++k) {
