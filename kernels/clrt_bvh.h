@@ -55,7 +55,7 @@ CLRT_INLINE vec3 inverse_direction(const vec3* D) {
  * the lower planes tested from O + p, the upper ones from O - p, is the box
  * widened by p on every side, p = pad x max|O|, at no cost per node. (The
  * rounding of O +- p, 2^-24 max|O|, is far inside p.) */
-#define CLRT_RAY_PAD ((real)CLRT_BVH_PAD(CLRT_PRECISION))
+#define CLRT_RAY_PAD ((real)CLRT_BVH_PAD(CLRT_PRECISION, CLRT_BVH_SPHERES))
 typedef struct box_origins {
   vec3 lower, upper; /* where the lower and upper planes are seen from */
 } box_origins;

@@ -25,6 +25,8 @@
  *                        (clrt_sphere.h)
  *   CLRT_BVH             walk the hierarchy (clrt_bvh.h) instead of testing
  *                        every sphere (the host's Accel, render/bvh.hpp)
+ *   CLRT_BVH_SPHERES     with it: 0 when the hierarchy holds no sphere (its
+ *                        boxes' padding, CLRT_BVH_PAD; default 1)
  *   CLRT_COUNT_RAYS      write per-pixel ray counters
  *   CLRT_OUT_RGBA8       store 8-bit RGBA (the canvas rule) instead of float
  *                        RGB (clrt_lanes.h: TO_CANVAS)
@@ -120,6 +122,10 @@
 #ifndef CLRT_HAS_TRIANGLES
 #define CLRT_HAS_TRIANGLES 1
 #endif
+#endif
+
+#ifndef CLRT_BVH_SPHERES
+#define CLRT_BVH_SPHERES 1
 #endif
 
 #ifndef CLRT_SUBSAMPLE

@@ -204,18 +204,23 @@ typedef struct clrt_bvh_node {
  * to the packing origin). The host pads each primitive's box by the factor
  * times max|C| + r; the walk widens every box by the factor times max|O| for
  * the ray at hand (kernels/clrt_bvh.h). Stable and robust: 2^-17, 64 ulps of
- * float (the tests' worst cases add up to ~20); fast: native square root and
- * division, whose accuracy the device chooses, 2^-11; fp64 2^-40.
- * (host/render/bvh.hpp) */
+ * float (the tests' worst cases add up to ~20); fast, where the hierarchy
+ * holds spheres: their tests take the native square root and division,
+ * whose accuracy the device chooses, 2^-11; fast without spheres: 2^-17, as
+ * the other float variants (its triangle tests use no native function, and
+ * -cl-fast-relaxed-math's division errs by a few ulps: the [bvh] tests
+ * check it); fp64 2^-40. (host/render/bvh.hpp) */
 #define CLRT_BVH_PAD_FLOAT 0x1p-17
 #define CLRT_BVH_PAD_FAST 0x1p-11
 #define CLRT_BVH_PAD_FP64 0x1p-40
-/* The factor of CLRT_PRECISION_* code `precision`: the one mapping, read by
- * the host (bvh_padding_scale()) and the kernel (CLRT_RAY_PAD). */
-#define CLRT_BVH_PAD(precision)                                  \
-  ((precision) == CLRT_PRECISION_FP64   ? CLRT_BVH_PAD_FP64 \
-   : (precision) == CLRT_PRECISION_FAST ? CLRT_BVH_PAD_FAST \
-                                        : CLRT_BVH_PAD_FLOAT)
+/* The factor of CLRT_PRECISION_* code `precision` for a hierarchy that
+ * holds spheres (`spheres` nonzero) or not: the one mapping, read by the
+ * host (bvh_padding_scale()) and the kernel (CLRT_RAY_PAD, whose
+ * CLRT_BVH_SPHERES the host passes). */
+#define CLRT_BVH_PAD(precision, spheres)                                       \
+  ((precision) == CLRT_PRECISION_FP64                 ? CLRT_BVH_PAD_FP64 \
+   : (precision) == CLRT_PRECISION_FAST && (spheres) ? CLRT_BVH_PAD_FAST \
+                                                      : CLRT_BVH_PAD_FLOAT)
 
 /* Primitive list entries: the primitive's kind in the top bits, its index in
  * the scene's list of that kind below. Planes are never in the hierarchy

@@ -122,6 +122,8 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
   if (uses_bvh(cfg.accel, features.sphere_count + features.triangle_count, cfg.precision)) {
     options.push_back("-DCLRT_BVH");
     options.push_back(define("CLRT_BVH_WIDTH", CLRT_BVH_WIDTH));  // the host's clrt_wide_node
+    // (the walk's share of the boxes' padding: CLRT_BVH_PAD)
+    options.push_back(define("CLRT_BVH_SPHERES", features.sphere_count > 0));
   }
   if (cfg.specialize) add_specialization(features, options);
   // The tree walk's pending rays take a slot per level (clrt_ray_tree.h): a scene

@@ -307,8 +307,8 @@ double scene_extent(const Scene& scene, Vec3 origin) {
 
 }  // namespace
 
-double bvh_padding_scale(Precision precision) {
-  return CLRT_BVH_PAD(kernel_code(precision));
+double bvh_padding_scale(Precision precision, bool spheres) {
+  return CLRT_BVH_PAD(kernel_code(precision), spheres);
 }
 
 Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads) {
@@ -323,7 +323,7 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
   // (naive's grazing hits scale with the extent, bvh.hpp)
   const double extent = precision == Precision::Naive ? scene_extent(scene, origin) : 0;
   Bvh bvh;
-  bvh.padding_scale = bvh_padding_scale(precision);
+  bvh.padding_scale = bvh_padding_scale(precision, !scene.spheres.empty());
   std::vector<Item> items(scene.spheres.size() + scene.triangles.size());
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const Sphere& s = scene.spheres[i];

@@ -78,8 +78,9 @@ struct Bvh {
   size_t bytes() const { return wide.size() * sizeof(clrt_wide_node) + primitives.size() * sizeof(clrt_i32); }
 };
 
-// The factor of the boxes' padding for `precision` (CLRT_BVH_PAD_*).
-double bvh_padding_scale(Precision precision);
+// The factor of the boxes' padding for `precision`, in a hierarchy that
+// holds spheres or not (CLRT_BVH_PAD).
+double bvh_padding_scale(Precision precision, bool spheres);
 
 // The hierarchy of `scene`'s spheres and triangles (empty scene: one empty
 // leaf; planes are never in it), in
