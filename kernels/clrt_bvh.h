@@ -14,18 +14,21 @@
  *    may still win the tie);
  *  - equal distances go to the lower primitive id, as in the loops, which
  *    see primitives in index order.
- * One ray per work-item (CLRT_LANES 1) tests a node's children together,
- * one SIMD lane per child (float4 or float8). A block of lanes tests the
- * children one after the other, one SIMD lane per ray, and enters a child
- * that any lane needs, for the lanes that met it; below a node that only
- * one or two lanes met, each of them walks alone (solo_closest(),
- * solo_any()). Either way the hit children, leaves and inner nodes
- * alike, are pushed nearest last, each with its entry distance (the smallest
- * over the lanes that meet it), so the nearest is visited first and a popped
- * child beyond the closest hit is skipped. Shadow rays take any hit and end
- * the walk at the first; they too go nearest first, where the usual blocker
- * is (unordered, they tested 25% more spheres: docs/results/wide-hierarchy.md). The
- * walk is iterative; CLRT_BVH_STACK entries always suffice (clrt_layout.h). */
+ * One ray's walk (ray_closest(), ray_any(): one ray per work-item, and a
+ * block's lanes that walk alone) tests a node's children together, one SIMD
+ * lane per child (float4 or float8), and pushes those hit without a branch
+ * per child: their keys (entry distance and slot) sorted in SIMD and stored
+ * whole (ray_push()). A block of lanes (CLRT_LANES > 1) tests the children
+ * one after the other, one SIMD lane per ray, and enters a child that any
+ * lane needs, for the lanes that met it; below a node that only one or two
+ * lanes met, each of them walks alone. Either way the hit children, leaves
+ * and inner nodes alike, are pushed nearest last, each with its entry
+ * distance (the smallest over the lanes that meet it), so the nearest is
+ * visited first and a popped child beyond the closest hit is skipped. Shadow
+ * rays take any hit and end the walk at the first; they too go nearest
+ * first, where the usual blocker is (unordered, they tested 25% more
+ * spheres: docs/results/wide-hierarchy.md). The walk is iterative;
+ * CLRT_BVH_STACK entries always suffice (clrt_layout.h). */
 #ifndef CLRT_BVH_H
 #define CLRT_BVH_H
 
@@ -99,13 +102,32 @@ typedef long4 wide_mask;
 #define TO_WIDE_REAL(v) convert_double4(v)
 #define TO_WIDE_MASK(v) convert_long4(v)
 #define WIDE_MASK_TO_INT(v) convert_int4(v)
+#define AS_WIDE_KEY(v) as_long4(v)
+#define AS_WIDE_REAL(v) as_double4(v)
 #else
 typedef float4 wide_real;
 typedef int4 wide_mask;
 #define TO_WIDE_REAL(v) (v)
 #define TO_WIDE_MASK(v) (v)
 #define WIDE_MASK_TO_INT(v) (v)
+#define AS_WIDE_KEY(v) as_int4(v)
+#define AS_WIDE_REAL(v) as_float4(v)
 #endif
+#define WIDE_KEY_IOTA ((wide_mask)(0, 1, 2, 3))
+typedef int4 wide_int;
+CLRT_INLINE int wide_sum(int4 v) {
+  const int2 h = v.lo + v.hi;
+  return h.x + h.y;
+}
+/* Sorts keys largest first: a bitonic network of swizzles, min and max. */
+CLRT_INLINE wide_mask sort_descending(wide_mask v) {
+  wide_mask p = v.s1032;
+  v = select(min(v, p), max(v, p), (wide_mask)(-1, 0, 0, -1));
+  p = v.s2301;
+  v = select(min(v, p), max(v, p), (wide_mask)(-1, -1, 0, 0));
+  p = v.s1032;
+  return select(min(v, p), max(v, p), (wide_mask)(-1, 0, -1, 0));
+}
 #elif CLRT_BVH_WIDTH == 8
 #define WIDE_LOAD(p) vload8(0, p)
 #define WIDE_STORE(v, p) vstore8(v, 0, p)
@@ -115,143 +137,139 @@ typedef long8 wide_mask;
 #define TO_WIDE_REAL(v) convert_double8(v)
 #define TO_WIDE_MASK(v) convert_long8(v)
 #define WIDE_MASK_TO_INT(v) convert_int8(v)
+#define AS_WIDE_KEY(v) as_long8(v)
+#define AS_WIDE_REAL(v) as_double8(v)
 #else
 typedef float8 wide_real;
 typedef int8 wide_mask;
 #define TO_WIDE_REAL(v) (v)
 #define TO_WIDE_MASK(v) (v)
 #define WIDE_MASK_TO_INT(v) (v)
+#define AS_WIDE_KEY(v) as_int8(v)
+#define AS_WIDE_REAL(v) as_float8(v)
 #endif
+#define WIDE_KEY_IOTA ((wide_mask)(0, 1, 2, 3, 4, 5, 6, 7))
+typedef int8 wide_int;
+CLRT_INLINE int wide_sum(int8 v) {
+  const int4 h4 = v.lo + v.hi;
+  const int2 h = h4.lo + h4.hi;
+  return h.x + h.y;
+}
+/* Sorts keys largest first: a bitonic network of swizzles, min and max. */
+CLRT_INLINE wide_mask sort_descending(wide_mask v) {
+  wide_mask p = v.s10325476;
+  v = select(min(v, p), max(v, p), (wide_mask)(-1, 0, 0, -1, -1, 0, 0, -1));
+  p = v.s23016745;
+  v = select(min(v, p), max(v, p), (wide_mask)(-1, -1, 0, 0, 0, 0, -1, -1));
+  p = v.s10325476;
+  v = select(min(v, p), max(v, p), (wide_mask)(-1, 0, -1, 0, 0, -1, 0, -1));
+  p = v.s45670123;
+  v = select(min(v, p), max(v, p), (wide_mask)(-1, -1, -1, -1, 0, 0, 0, 0));
+  p = v.s23016745;
+  v = select(min(v, p), max(v, p), (wide_mask)(-1, -1, 0, 0, -1, -1, 0, 0));
+  p = v.s10325476;
+  return select(min(v, p), max(v, p), (wide_mask)(-1, 0, -1, 0, -1, 0, -1, 0));
+}
 #else
 #error "CLRT_BVH_WIDTH must be 4 or 8"
 #endif
 
-/* The children whose box one ray may meet within (tmin, limit) (hit[k]
- * nonzero) and their widened entry distances; the ray's padded origins
- * (lx, ly, lz for the lower planes, ux, uy, uz for the upper) and its
- * reciprocal direction (ix, iy, iz). */
-CLRT_INLINE void ray_children(__global const clrt_wide_node* node, real lx, real ly, real lz, real ux, real uy, real uz,
-                              real ix, real iy, real iz, real tmin, real limit, real* enter_out, int* hit_out) {
-  const wide_real x0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[0])) - lx) * ix;
-  const wide_real x1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[0])) - ux) * ix;
-  const wide_real y0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[1])) - ly) * iy;
-  const wide_real y1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[1])) - uy) * iy;
-  const wide_real z0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[2])) - lz) * iz;
-  const wide_real z1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[2])) - uz) * iz;
+/* The children whose box one ray may meet within (tmin, limit) (nonzero
+ * lanes of the result) and their widened entry distances (`enter`); the
+ * ray's padded origins (lx, ly, lz for the lower planes, ux, uy, uz for the
+ * upper) and its reciprocal direction (ix, iy, iz). */
+typedef struct slab_ray {
+  real lx, ly, lz, ux, uy, uz, ix, iy, iz;
+} slab_ray;
+CLRT_INLINE wide_mask ray_boxes(__global const clrt_wide_node* node, const slab_ray* r, real tmin, real limit,
+                                wide_real* enter_out) {
+  const wide_real x0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[0])) - r->lx) * r->ix;
+  const wide_real x1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[0])) - r->ux) * r->ix;
+  const wide_real y0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[1])) - r->ly) * r->iy;
+  const wide_real y1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[1])) - r->uy) * r->iy;
+  const wide_real z0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[2])) - r->lz) * r->iz;
+  const wide_real z1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[2])) - r->uz) * r->iz;
   wide_real enter = BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMIN(z0, z1));
   wide_real leave = BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMAX(z0, z1));
   const wide_real slack = (fabs(enter) + fabs(leave)) * CLRT_BOX_SLACK;
   enter -= slack;
   leave += slack;
   const wide_mask used = TO_WIDE_MASK(WIDE_LOAD(node->count) != 0);
-  const wide_mask hit = (enter <= leave) & (leave >= tmin) & (enter <= limit) & used;
-  WIDE_STORE(enter, enter_out);
-  WIDE_STORE(WIDE_MASK_TO_INT(hit), hit_out);
+  *enter_out = enter;
+  return (enter <= leave) & (leave >= tmin) & (enter <= limit) & used;
 }
 
-#if CLRT_LANES == 1
-CLRT_INLINE void node_children(__global const clrt_wide_node* node, const box_origins* O, const vec3* inverse,
-                               real tmin, lreal limit, lint active, real* enter_out, int* hit_out) {
-  ray_children(node, O->lower.x, O->lower.y, O->lower.z, O->upper.x, O->upper.y, O->upper.z, (*inverse).x, (*inverse).y,
-               (*inverse).z, tmin, limit, enter_out, hit_out);
-  (void)active;
-}
-#else
-/* The smallest of the lanes of an lreal (selects: no NaN here). */
-CLRT_INLINE real lane_min_real(lreal x) {
-#if CLRT_LANES == 16
-  const float8 h8 = BMIN(x.lo, x.hi);
-  const float4 h4 = BMIN(h8.lo, h8.hi);
-#elif CLRT_LANES == 8
-  const float4 h4 = BMIN(x.lo, x.hi);
-#else
-  const float4 h4 = x;
-#endif
-  const float2 h2 = BMIN(h4.lo, h4.hi);
-  return BMIN(h2.x, h2.y);
+/* Lane j of a vector (LANES 1: the scalar itself). */
+#define LANE_OF(vector, j) (((const real*)&(vector))[j])
+#define LINT_LANE(vector, j) (((const int*)&(vector))[j])
+
+/* Lane j's ray, for ray_boxes(). */
+CLRT_INLINE slab_ray slab_ray_of(const box_origins* O, const vec3* inverse, int j) {
+  slab_ray r;
+  r.lx = LANE_OF(O->lower.x, j);
+  r.ly = LANE_OF(O->lower.y, j);
+  r.lz = LANE_OF(O->lower.z, j);
+  r.ux = LANE_OF(O->upper.x, j);
+  r.uy = LANE_OF(O->upper.y, j);
+  r.uz = LANE_OF(O->upper.z, j);
+  r.ix = LANE_OF((*inverse).x, j);
+  r.iy = LANE_OF((*inverse).y, j);
+  r.iz = LANE_OF((*inverse).z, j);
+  return r;
 }
 
-/* A lane mask as bits (lane i, bit i) and back. */
-CLRT_INLINE int lane_bits(lint lanes) {
-  return LANE_OR(lanes & ((lint)1 << LANE_IOTA));
-}
-CLRT_INLINE lint bits_lanes(int bits) {
-  return (((lint)bits >> LANE_IOTA) & 1) != 0;
-}
-
-/* A block of rays, child after child: hit[k] is the bits of the lanes of
- * `active` that may meet child k's box within their interval (0: none);
- * enter[k] the smallest widened entry distance of those lanes. */
-CLRT_INLINE void node_children(__global const clrt_wide_node* node, const box_origins* O, const vec3* inverse,
-                               real tmin, lreal limit, lint active, real* enter_out, int* hit_out) {
-  for (int k = 0; k < CLRT_BVH_WIDTH; ++k) {
-    hit_out[k] = 0;
-    if (node->count[k] == 0) continue;
-    lreal enter;
-    const lint lanes = active & child_overlap(node, k, O, inverse, tmin, limit, &enter);
-    if (!ANY(lanes)) continue;
-    hit_out[k] = lane_bits(lanes);
-    enter_out[k] = lane_min_real(lanes ? enter : (lreal)REAL_INFINITY);
-  }
-}
-#endif
-
-/* The stack of a walk: the children it has yet to visit, each with its
- * entry distance and, in a block walk, the bits of the lanes that met its
- * box. */
+/* The stack of a walk: the children it has yet to visit, each as the index
+ * of its parent node (`node`) and a key (`enter`): its entry distance with
+ * its slot in the parent in the low bits (ENTRY_KEY). In a block walk, also
+ * the bits of the lanes that met its box. A leaf's entries and an inner
+ * child's index are read from the parent when popped (entry_child()): a
+ * child popped beyond the closest hit is never read. */
 #if CLRT_LANES > 1
 #define STACK_LANES(statement) statement
 #else
 #define STACK_LANES(statement)
 #endif
 typedef struct walk_stack {
-  int child[CLRT_BVH_STACK];
-  real enter[CLRT_BVH_STACK];
+  /* (room above the top for a whole node's keys: ray_push()) */
+  int node[CLRT_BVH_STACK + CLRT_BVH_WIDTH];
+  real enter[CLRT_BVH_STACK + CLRT_BVH_WIDTH];
   STACK_LANES(int lanes[CLRT_BVH_STACK];)
 } walk_stack;
 
-/* Pushes the children of node `index` that hit[] names, keeping those pushed
- * since the call farthest first (insertion: at most CLRT_BVH_WIDTH of them).
- * Inner children are pushed as their node index, leaves as ~(index *
- * CLRT_BVH_WIDTH + slot): their entries are read only when popped
- * (leaf_entries()), and a leaf popped beyond the closest hit is never read. */
-CLRT_INLINE void push_hits(__global const clrt_wide_node* node, int index, const real* enter, const int* hit,
-                           walk_stack* stack, int* top) {
-  const int base = *top;
-  for (int slot = 0; slot < CLRT_BVH_WIDTH; ++slot) {
-    if (!hit[slot]) continue;
-    const int child = node->count[slot] > 0 ? ~(index * CLRT_BVH_WIDTH + slot) : node->child[slot];
-    int k = (*top)++;
-    while (k > base && stack->enter[k - 1] < enter[slot]) {
-      stack->child[k] = stack->child[k - 1];
-      stack->enter[k] = stack->enter[k - 1];
-      STACK_LANES(stack->lanes[k] = stack->lanes[k - 1]);
-      --k;
-    }
-    stack->child[k] = child;
-    stack->enter[k] = enter[slot];
-    STACK_LANES(stack->lanes[k] = hit[slot]);
-  }
+/* A child's key from the bits of its entry distance (clamped to at least 0,
+ * so the bits order as the distances do) and its slot: the bits lowered by
+ * CLRT_BVH_WIDTH ulps, then the slot in the low bits, so the key never
+ * exceeds the distance (a child is skipped only when the key is beyond the
+ * closest hit). `zero` is 0 of the bits' type. */
+#define ENTRY_KEY(bits, slot, zero) ((max((bits)-CLRT_BVH_WIDTH, zero) & ~(CLRT_BVH_WIDTH - 1)) | (slot))
+#if CLRT_PRECISION == CLRT_PRECISION_FP64
+#define KEY_SLOT(key) ((int)(as_long(key) & (CLRT_BVH_WIDTH - 1)))
+#else
+#define KEY_SLOT(key) (as_int(key) & (CLRT_BVH_WIDTH - 1))
+#endif
+
+/* The child that stack entry `top` names: its node (*count < 0) or its first
+ * primitive entry (*count of them). */
+CLRT_INLINE int entry_child(__global const clrt_wide_node* nodes, const walk_stack* stack, int top, int* count) {
+  __global const clrt_wide_node* parent = &nodes[stack->node[top]];
+  const int slot = KEY_SLOT(stack->enter[top]);
+  *count = parent->count[slot];
+  return parent->child[slot];
 }
 
-/* One step of either walk: tests node `index`'s children against the lanes
- * of `active` and pushes those hit, nearest on top. */
-CLRT_INLINE void push_children(__global const clrt_wide_node* nodes, int index, const box_origins* O,
-                               const vec3* inverse, real tmin, lreal limit, lint active, walk_stack* stack, int* top) {
-  __global const clrt_wide_node* node = &nodes[index];
-  real enter[CLRT_BVH_WIDTH];
-  int hit[CLRT_BVH_WIDTH];
-  node_children(node, O, inverse, tmin, limit, active, enter, hit);
-  push_hits(node, index, enter, hit, stack, top);
-}
-
-/* The primitive entries [*first, *first + *count) of the leaf that stack
- * entry `reference` (~(node * CLRT_BVH_WIDTH + slot), negative) stands for. */
-CLRT_INLINE void leaf_entries(__global const clrt_wide_node* nodes, int reference, int* first, int* count) {
-  const int slot = ~reference;
-  __global const clrt_wide_node* parent = &nodes[slot / CLRT_BVH_WIDTH];
-  *first = parent->child[slot % CLRT_BVH_WIDTH];
-  *count = parent->count[slot % CLRT_BVH_WIDTH];
+/* One ray at node `index`: pushes the children whose box it may meet within
+ * (tmin, limit), nearest on top, without a branch per child (the slot loop
+ * it replaces mispredicted one in most slots: docs/results/wide-hierarchy.md).
+ * The keys, misses as -1, are sorted largest first and stored whole; the top
+ * rises by the hits, so the misses land above it. */
+CLRT_INLINE void ray_push(__global const clrt_wide_node* nodes, int index, const slab_ray* r, real tmin, real limit,
+                          walk_stack* stack, int* top) {
+  wide_real enter;
+  const wide_mask hit = ray_boxes(&nodes[index], r, tmin, limit, &enter);
+  const wide_mask key = ENTRY_KEY(AS_WIDE_KEY(BMAX(enter, (wide_real)0)), WIDE_KEY_IOTA, (wide_mask)0);
+  WIDE_STORE(AS_WIDE_REAL(sort_descending(select((wide_mask)-1, key, hit))), &stack->enter[*top]);
+  WIDE_STORE((wide_int)index, &stack->node[*top]);
+  *top -= wide_sum(WIDE_MASK_TO_INT(hit));
 }
 
 /* The distances to the primitive of leaf entry k (a sphere's two roots, or
@@ -325,16 +343,117 @@ CLRT_INLINE lint any_in_leaf(int first, int count, const vec3* O, const vec3* D 
   return blocked;
 }
 
+/* Lane j's closest-hit walk of the subtree under node `root` (LANES 1:
+ * the one ray's whole walk), on the stack above `base`. A leaf's
+ * primitives are tested against every lane's ray (in a block, it costs the
+ * one ray's price, and a hit found for another lane is as valid as any: the
+ * closest hit is the least over every primitive a lane's walk must test,
+ * and more tests only shorten the walk). */
+CLRT_INLINE void ray_closest(int root, int j, const slab_ray* r, const vec3* O, const vec3* D SHEAR_ARG, real tmin,
+                             real tmax, lint self, const scene_data* scene, lreal* closest, lint* best, lint* tests,
+                             walk_stack* stack, int base) {
+  __global const clrt_wide_node* nodes = scene->nodes;
+  int top = base, index = root;
+  for (;;) {
+    ray_push(nodes, index, r, tmin, BMIN(LANE_OF(*closest, j), tmax), stack, &top);
+    index = -1;
+    while (top > base) {
+      --top;
+      if (stack->enter[top] > LANE_OF(*closest, j)) continue;
+      int count;
+      const int child = entry_child(nodes, stack, top, &count);
+      if (count < 0) {
+        index = child;
+        break;
+      }
+      closest_in_leaf(child, count, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, closest, best, tests);
+    }
+    if (index < 0) return;
+  }
+}
+
+/* Lane j's any-hit walk of the subtree under node `root`, on the stack
+ * above `base`: it ends when lane j is blocked. */
+CLRT_INLINE void ray_any(int root, int j, const slab_ray* r, const vec3* O, const vec3* D SHEAR_ARG, real tmin,
+                         real tmax, lint self, const scene_data* scene, lint* blocked, lint* tests, walk_stack* stack,
+                         int base) {
+  __global const clrt_wide_node* nodes = scene->nodes;
+  int top = base, index = root;
+  for (;;) {
+    ray_push(nodes, index, r, tmin, tmax, stack, &top);
+    index = -1;
+    while (top > base) {
+      --top;
+      int count;
+      const int child = entry_child(nodes, stack, top, &count);
+      if (count < 0) {
+        index = child;
+        break;
+      }
+      *blocked |= any_in_leaf(child, count, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, tests);
+      if (LINT_LANE(*blocked, j)) return;
+    }
+    if (index < 0) return;
+  }
+}
+
 #if CLRT_LANES > 1
+/* The smallest of the lanes of an lreal (selects: no NaN here). */
+CLRT_INLINE real lane_min_real(lreal x) {
+#if CLRT_LANES == 16
+  const float8 h8 = BMIN(x.lo, x.hi);
+  const float4 h4 = BMIN(h8.lo, h8.hi);
+#elif CLRT_LANES == 8
+  const float4 h4 = BMIN(x.lo, x.hi);
+#else
+  const float4 h4 = x;
+#endif
+  const float2 h2 = BMIN(h4.lo, h4.hi);
+  return BMIN(h2.x, h2.y);
+}
+
+/* A lane mask as bits (lane i, bit i) and back. */
+CLRT_INLINE int lane_bits(lint lanes) {
+  return LANE_OR(lanes & ((lint)1 << LANE_IOTA));
+}
+CLRT_INLINE lint bits_lanes(int bits) {
+  return (((lint)bits >> LANE_IOTA) & 1) != 0;
+}
+
+/* A block of rays at node `index`, child after child: pushes each child
+ * that lanes of `active` may meet within their interval, with those lanes'
+ * bits and their smallest widened entry distance, keeping those pushed
+ * since the call farthest first (insertion: at most CLRT_BVH_WIDTH). (Block
+ * walks are float builds only.) */
+CLRT_INLINE void block_push(__global const clrt_wide_node* nodes, int index, const box_origins* O, const vec3* inverse,
+                            real tmin, lreal limit, lint active, walk_stack* stack, int* top) {
+  __global const clrt_wide_node* node = &nodes[index];
+  const int base = *top;
+  for (int slot = 0; slot < CLRT_BVH_WIDTH; ++slot) {
+    if (node->count[slot] == 0) continue;
+    lreal enter;
+    const lint lanes = active & child_overlap(node, slot, O, inverse, tmin, limit, &enter);
+    if (!ANY(lanes)) continue;
+    const real key =
+        as_float(ENTRY_KEY(as_int(BMAX(lane_min_real(lanes ? enter : (lreal)REAL_INFINITY), 0.0f)), slot, 0));
+    int k = (*top)++;
+    while (k > base && stack->enter[k - 1] < key) {
+      stack->node[k] = stack->node[k - 1];
+      stack->enter[k] = stack->enter[k - 1];
+      stack->lanes[k] = stack->lanes[k - 1];
+      --k;
+    }
+    stack->node[k] = index;
+    stack->enter[k] = key;
+    stack->lanes[k] = lane_bits(lanes);
+  }
+}
+
 /* A block's rays part ways after a bounce: below a node that few of its
  * lanes' rays meet (CLRT_SOLO_LANES or fewer), a block walk would test each
  * box lane after lane (CLRT_BVH_WIDTH slab tests of the block) for one or
- * two rays. Those lanes walk that subtree alone instead, one ray at a time,
- * every child of a node in one test (ray_children()), as the one-ray walk
- * does; a leaf's primitives are still tested against every lane's ray (it
- * costs the one ray's price, and a hit found for another lane is as valid
- * as any: the closest hit is the least over every primitive a lane's walk
- * must test, and more tests only shorten the walk). */
+ * two rays. Those lanes walk that subtree alone instead (ray_closest(),
+ * ray_any()), every child of a node in one test, as the one-ray walk does. */
 #ifndef CLRT_SOLO_LANES
 #ifdef CLRT_LOOP_LIMIT_PROBE
 /* (llvmpipe ends a work-item after 65 535 loop iterations in all, and a
@@ -347,92 +466,14 @@ CLRT_INLINE lint any_in_leaf(int first, int count, const vec3* O, const vec3* D 
 #define CLRT_SOLO_LANES 2
 #endif
 #endif
-#define LANE_OF(vector, j) (((const real*)&(vector))[j])
-#define LINT_LANE(vector, j) (((const int*)&(vector))[j])
 
-/* Lane j's ray, for ray_children(). */
-typedef struct solo_ray {
-  real lx, ly, lz, ux, uy, uz, ix, iy, iz;
-} solo_ray;
-CLRT_INLINE solo_ray solo_ray_of(const box_origins* O, const vec3* inverse, int j) {
-  solo_ray r;
-  r.lx = LANE_OF(O->lower.x, j);
-  r.ly = LANE_OF(O->lower.y, j);
-  r.lz = LANE_OF(O->lower.z, j);
-  r.ux = LANE_OF(O->upper.x, j);
-  r.uy = LANE_OF(O->upper.y, j);
-  r.uz = LANE_OF(O->upper.z, j);
-  r.ix = LANE_OF((*inverse).x, j);
-  r.iy = LANE_OF((*inverse).y, j);
-  r.iz = LANE_OF((*inverse).z, j);
-  return r;
-}
-
-/* Lane j's closest-hit walk of the subtree under node `root`, on the stack
- * above `base`. */
-CLRT_INLINE void solo_closest(int root, int j, const solo_ray* r, const vec3* O, const vec3* D SHEAR_ARG, real tmin,
-                              real tmax, lint self, const scene_data* scene, lreal* closest, lint* best, lint* tests,
-                              walk_stack* stack, int base) {
-  __global const clrt_wide_node* nodes = scene->nodes;
-  int top = base, index = root;
-  for (;;) {
-    real enter[CLRT_BVH_WIDTH];
-    int hit[CLRT_BVH_WIDTH];
-    ray_children(&nodes[index], r->lx, r->ly, r->lz, r->ux, r->uy, r->uz, r->ix, r->iy, r->iz, tmin,
-                 BMIN(LANE_OF(*closest, j), tmax), enter, hit);
-    push_hits(&nodes[index], index, enter, hit, stack, &top);
-    index = -1;
-    while (top > base) {
-      --top;
-      if (stack->enter[top] > LANE_OF(*closest, j)) continue;
-      if (stack->child[top] >= 0) {
-        index = stack->child[top];
-        break;
-      }
-      int first, count;
-      leaf_entries(nodes, stack->child[top], &first, &count);
-      closest_in_leaf(first, count, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, closest, best, tests);
-    }
-    if (index < 0) return;
-  }
-}
-
-/* Lane j's any-hit walk of the subtree under node `root`, on the stack
- * above `base`: it ends when lane j is blocked. */
-CLRT_INLINE void solo_any(int root, int j, const solo_ray* r, const vec3* O, const vec3* D SHEAR_ARG, real tmin,
-                          real tmax, lint self, const scene_data* scene, lint* blocked, lint* tests, walk_stack* stack,
-                          int base) {
-  __global const clrt_wide_node* nodes = scene->nodes;
-  int top = base, index = root;
-  for (;;) {
-    real enter[CLRT_BVH_WIDTH];
-    int hit[CLRT_BVH_WIDTH];
-    ray_children(&nodes[index], r->lx, r->ly, r->lz, r->ux, r->uy, r->uz, r->ix, r->iy, r->iz, tmin, tmax, enter, hit);
-    push_hits(&nodes[index], index, enter, hit, stack, &top);
-    index = -1;
-    while (top > base) {
-      --top;
-      if (stack->child[top] >= 0) {
-        index = stack->child[top];
-        break;
-      }
-      int first, count;
-      leaf_entries(nodes, stack->child[top], &first, &count);
-      *blocked |= any_in_leaf(first, count, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, tests);
-      if (LINT_LANE(*blocked, j)) return;
-    }
-    if (index < 0) return;
-  }
-}
-
-/* The lowest set bit's index, and the bits without it. */
+/* The lowest set bit's index. */
 #define LOWEST_BIT(bits) (31 - clz((bits) & -(bits)))
 #endif
 
 /* Closest hit in (tmin, tmax) per lane: the primitive id or -1. */
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
                                       const scene_data* scene, lreal* t_out, lint* tests) {
-  __global const clrt_wide_node* nodes = scene->nodes;
   const vec3 inverse = inverse_direction(D);
   const box_origins origins = padded_origins(O);
   lreal closest = REAL_INFINITY;
@@ -446,39 +487,43 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
   const ray_shear shear = shear_of(D);
 #endif
   walk_stack stack;
+#if CLRT_LANES == 1
+  const slab_ray r = slab_ray_of(&origins, &inverse, 0);
+  ray_closest(0, 0, &r, O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best, tests, &stack, 0);
+#else
+  __global const clrt_wide_node* nodes = scene->nodes;
   int top = 0, index = 0;
   lint lanes = MASK_TRUE; /* those whose ray met node `index`'s box */
   for (;;) {
-    push_children(nodes, index, &origins, &inverse, tmin, BMIN(closest, (lreal)tmax), lanes, &stack, &top);
+    block_push(nodes, index, &origins, &inverse, tmin, BMIN(closest, (lreal)tmax), lanes, &stack, &top);
     /* the nearest child still worth a visit (beyond every lane's closest
      * hit, none is): leaves are tested on the way to it */
     index = -1;
     while (top > 0) {
       --top;
       if (!ANY(stack.enter[top] <= closest)) continue;
-      if (stack.child[top] >= 0) {
-#if CLRT_LANES > 1
-        int bits = stack.lanes[top];
-        if (popcount(bits) <= CLRT_SOLO_LANES) {
-          const int child = stack.child[top]; /* (each walk reuses its slot) */
-          for (; bits != 0; bits &= bits - 1) {
-            const int j = LOWEST_BIT(bits);
-            const solo_ray r = solo_ray_of(&origins, &inverse, j);
-            solo_closest(child, j, &r, O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best, tests, &stack, top);
-          }
-          continue;
-        }
-        lanes = bits_lanes(bits);
-#endif
-        index = stack.child[top];
-        break;
+      int count;
+      const int child = entry_child(nodes, &stack, top, &count);
+      if (count > 0) {
+        closest_in_leaf(child, count, O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best, tests);
+        continue;
       }
-      int first, count;
-      leaf_entries(nodes, stack.child[top], &first, &count);
-      closest_in_leaf(first, count, O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best, tests);
+      int bits = stack.lanes[top];
+      if (popcount(bits) <= CLRT_SOLO_LANES) {
+        for (; bits != 0; bits &= bits - 1) { /* (each walk reuses the slot) */
+          const int j = LOWEST_BIT(bits);
+          const slab_ray r = slab_ray_of(&origins, &inverse, j);
+          ray_closest(child, j, &r, O, D SHEAR_PASS, tmin, tmax, self, scene, &closest, &best, tests, &stack, top);
+        }
+        continue;
+      }
+      lanes = bits_lanes(bits);
+      index = child;
+      break;
     }
     if (index < 0) break;
   }
+#endif
   *t_out = closest;
   return best;
 }
@@ -487,7 +532,6 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
  * when every one of them is blocked. */
 CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
                                   const scene_data* scene, lint* tests) {
-  __global const clrt_wide_node* nodes = scene->nodes;
   const vec3 inverse = inverse_direction(D);
   const box_origins origins = padded_origins(O);
 #if CLRT_HAS_TRIANGLES
@@ -500,6 +544,13 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
   lint blocked = 0;
 #endif
   walk_stack stack;
+#if CLRT_LANES == 1
+  if (active && !blocked) {
+    const slab_ray r = slab_ray_of(&origins, &inverse, 0);
+    ray_any(0, 0, &r, O, D SHEAR_PASS, tmin, tmax, self, scene, &blocked, tests, &stack, 0);
+  }
+#else
+  __global const clrt_wide_node* nodes = scene->nodes;
   int top = 0, index = 0;
   lint lanes = MASK_TRUE; /* those whose ray met node `index`'s box */
   for (;;) {
@@ -507,37 +558,36 @@ CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real 
     if (!ANY(open)) break;
     /* nearest first, as the closest-hit walk: a blocker near the surface
      * (the usual one) is found before the far subtrees are walked */
-    push_children(nodes, index, &origins, &inverse, tmin, (lreal)tmax, open, &stack, &top);
+    block_push(nodes, index, &origins, &inverse, tmin, (lreal)tmax, open, &stack, &top);
     index = -1;
     while (top > 0) {
       --top;
-      if (stack.child[top] >= 0) {
-#if CLRT_LANES > 1
-        int bits = stack.lanes[top] & lane_bits(active & !blocked);
-        if (bits == 0) continue;
-        if (popcount(bits) <= CLRT_SOLO_LANES) {
-          const int child = stack.child[top]; /* (each walk reuses its slot) */
-          for (; bits != 0; bits &= bits - 1) {
-            const int j = LOWEST_BIT(bits);
-            if (LINT_LANE(blocked, j)) continue;
-            const solo_ray r = solo_ray_of(&origins, &inverse, j);
-            solo_any(child, j, &r, O, D SHEAR_PASS, tmin, tmax, self, scene, &blocked, tests, &stack, top);
-          }
-          if (ALL(blocked | !active)) return blocked;
-          continue;
-        }
-        lanes = bits_lanes(bits);
-#endif
-        index = stack.child[top];
-        break;
+      int count;
+      const int child = entry_child(nodes, &stack, top, &count);
+      if (count > 0) {
+        blocked |= any_in_leaf(child, count, O, D SHEAR_PASS, tmin, tmax, self, scene, tests);
+        if (ALL(blocked | !active)) return blocked;
+        continue;
       }
-      int first, count;
-      leaf_entries(nodes, stack.child[top], &first, &count);
-      blocked |= any_in_leaf(first, count, O, D SHEAR_PASS, tmin, tmax, self, scene, tests);
-      if (ALL(blocked | !active)) return blocked;
+      int bits = stack.lanes[top] & lane_bits(active & !blocked);
+      if (bits == 0) continue;
+      if (popcount(bits) <= CLRT_SOLO_LANES) {
+        for (; bits != 0; bits &= bits - 1) { /* (each walk reuses the slot) */
+          const int j = LOWEST_BIT(bits);
+          if (LINT_LANE(blocked, j)) continue;
+          const slab_ray r = slab_ray_of(&origins, &inverse, j);
+          ray_any(child, j, &r, O, D SHEAR_PASS, tmin, tmax, self, scene, &blocked, tests, &stack, top);
+        }
+        if (ALL(blocked | !active)) return blocked;
+        continue;
+      }
+      lanes = bits_lanes(bits);
+      index = child;
+      break;
     }
     if (index < 0) break;
   }
+#endif
   return blocked;
 }
 
