@@ -224,16 +224,13 @@ CLRT_INLINE slab_ray slab_ray_of(const box_origins* O, const vec3* inverse, int 
  * the bits of the lanes that met its box. A leaf's entries and an inner
  * child's index are read from the parent when popped (entry_child()): a
  * child popped beyond the closest hit is never read. */
-#if CLRT_LANES > 1
-#define STACK_LANES(statement) statement
-#else
-#define STACK_LANES(statement)
-#endif
 typedef struct walk_stack {
   /* (room above the top for a whole node's keys: ray_push()) */
   int node[CLRT_BVH_STACK + CLRT_BVH_WIDTH];
   real enter[CLRT_BVH_STACK + CLRT_BVH_WIDTH];
-  STACK_LANES(int lanes[CLRT_BVH_STACK];)
+#if CLRT_LANES > 1
+  int lanes[CLRT_BVH_STACK]; /* (block_push() alone writes them) */
+#endif
 } walk_stack;
 
 /* A child's key from the bits of its entry distance (clamped to at least 0,
