@@ -205,35 +205,36 @@ TEST_CASE("cache warm stores the programs a render then loads", "[cli][cache][op
   TempDir dir;
   const std::string storing = std::string(clrt_test::kStoringDriverEnv) + " ";
   const std::string env = storing + "CLRT_CACHE_DIR=" + clrt_test::shell_quote(dir / "cache");
-  const std::string glass = clrt_test::source_path("scenes/glass.json");
+  const std::string scene = dir / "one.json";  // (cold builds: clrt_test::kOneSphereScene says why)
+  std::ofstream(scene) << clrt_test::kOneSphereScene;
   const std::vector<std::string> size{"--width", "64", "--height", "48", "--aspect", "image"};
   const auto with = [&](std::vector<std::string> args) {
     args.insert(args.end(), size.begin(), size.end());
     return args;
   };
   // Cold, a render builds (so that the check below can fail).
-  RunResult cold = run_clrt(with({"render", glass, "-o", dir / clrt_test::image_name("cold"), "--verbose"}),
+  RunResult cold = run_clrt(with({"render", scene, "-o", dir / clrt_test::image_name("cold"), "--verbose"}),
                             storing + "CLRT_CACHE_DIR=" + clrt_test::shell_quote(dir / "other"));
   INFO(cold.err);
   CHECK_THAT(cold.err, Contains("program built, stored in cache"));
-  const RunResult warm = run_clrt(with({"cache", "warm", glass}), env);
+  const RunResult warm = run_clrt(with({"cache", "warm", scene}), env);
   INFO(warm.out << warm.err);
   REQUIRE(warm.status == 0);
-  CHECK_THAT(warm.out, Contains(glass + ": "));
+  CHECK_THAT(warm.out, Contains(scene + ": "));
   CHECK_THAT(warm.out, Contains("built and stored in the cache"));
-  const RunResult render = run_clrt(with({"render", glass, "-o", dir / clrt_test::image_name("x"), "--verbose"}), env);
+  const RunResult render = run_clrt(with({"render", scene, "-o", dir / clrt_test::image_name("x"), "--verbose"}), env);
   INFO(render.err);
   CHECK(render.status == 0);
   CHECK_THAT(render.err, Contains("program loaded from cache"));
   CHECK_THAT(render.err, !Contains("program built"));
-  CHECK_THAT(run_clrt(with({"cache", "warm", glass}), env).out, Contains("in the cache already"));
+  CHECK_THAT(run_clrt(with({"cache", "warm", scene}), env).out, Contains("in the cache already"));
   // Float outputs take another program: --format warms it.
   if (!clrt::kLeanBuild) {
-    REQUIRE(run_clrt(with({"cache", "warm", glass, "--format", "pfm"}), env).status == 0);
-    const RunResult pfm = run_clrt(with({"render", glass, "-o", dir / "x.pfm", "--verbose"}), env);
+    REQUIRE(run_clrt(with({"cache", "warm", scene, "--format", "pfm"}), env).status == 0);
+    const RunResult pfm = run_clrt(with({"render", scene, "-o", dir / "x.pfm", "--verbose"}), env);
     CHECK_THAT(pfm.err, Contains("program loaded from cache"));
   }
-  check_one_error(run_clrt(with({"cache", "warm", glass, "--no-cache"}), env), "--no-cache");
+  check_one_error(run_clrt(with({"cache", "warm", scene, "--no-cache"}), env), "--no-cache");
   check_one_error(run_clrt(with({"cache", "warm", dir / "none.json"}), env), "none.json");
 }
 

@@ -106,7 +106,10 @@ TEST_CASE("layers of one sphere straight ahead: the values worked out by hand", 
 
 TEST_CASE("the kernel's layers match the reference's within compare's tolerances", "[opencl][aov]") {
   // Spheres, glass, planes and triangles, with the hierarchy (the flat
-  // scene's triangles) and without; and one 16-lane build.
+  // scene's triangles) and without; and one 16-lane build, but only where
+  // every_build() holds: on rusticl's llvmpipe (1 lane by default) a 16-lane
+  // program with layers built cold in 150-160 s (demo, glass; 4-5 s at 1
+  // lane), and this case alone took 408 of the every-device run's 544 s.
   struct Case {
     const char* name;
     Scene scene;
@@ -116,6 +119,7 @@ TEST_CASE("the kernel's layers match the reference's within compare's tolerances
                                 {"flat", clrt_test::flat_scene()}};
   for (const Case& c : cases) {
     for (const int lanes : {0, 16}) {
+      if (lanes == 16 && !clrt_test::every_build()) continue;
       INFO(c.name << ", lanes " << lanes);
       KernelConfig cfg;
       cfg.lanes = lanes;

@@ -96,7 +96,7 @@ TEST_CASE("program cache: a second build is a hit and renders the same image", "
   std::string old = std::getenv("CLRT_CACHE_DIR") ? std::getenv("CLRT_CACHE_DIR") : "";
   ::setenv("CLRT_CACHE_DIR", dir.path().c_str(), 1);
   DeviceInfo dev = clrt_test::test_device();
-  Scene s = clrt_test::load("scenes/cgfs-demo.json");
+  const Scene s = parse_scene(clrt_test::kOneSphereScene, "one");  // (five cold builds)
   KernelConfig cfg;
   FrameStats t1, t2, t3, t4;
   Image first = render_with(dev, cfg, s, 64, 48, 2, nullptr, &t1);
