@@ -468,12 +468,15 @@ CLRT_INLINE void block_push(__global const clrt_wide_node* nodes, int index, con
 #define LOWEST_BIT(bits) (31 - clz((bits) & -(bits)))
 #endif
 
-/* Closest hit in (tmin, tmax) per lane: the primitive id or -1. */
-CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
+/* Closest hit in (tmin, tmax) per lane of `active`: the primitive id or -1.
+ * A block walks only their rays (an ended path keeps its last ray, which
+ * made the block visit its nodes for nothing): the other lanes' closest
+ * distance starts at -infinity, below every box and primitive. */
+CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
                                       const scene_data* scene, lreal* t_out, lint* tests) {
   const vec3 inverse = inverse_direction(D);
   const box_origins origins = padded_origins(O);
-  lreal closest = REAL_INFINITY;
+  lreal closest = active ? (lreal)REAL_INFINITY : (lreal)-REAL_INFINITY;
   lint best = -1;
 #if CLRT_HAS_PLANES
   /* planes first (they are not in the hierarchy): a near plane shortens
@@ -490,7 +493,7 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
 #else
   __global const clrt_wide_node* nodes = scene->nodes;
   int top = 0, index = 0;
-  lint lanes = MASK_TRUE; /* those whose ray met node `index`'s box */
+  lint lanes = active; /* those whose ray met node `index`'s box */
   for (;;) {
     block_push(nodes, index, &origins, &inverse, tmin, BMIN(closest, (lreal)tmax), lanes, &stack, &top);
     /* the nearest child still worth a visit (beyond every lane's closest
@@ -521,7 +524,7 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
     if (index < 0) break;
   }
 #endif
-  *t_out = closest;
+  *t_out = active ? closest : (lreal)REAL_INFINITY;
   return best;
 }
 

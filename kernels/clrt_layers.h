@@ -34,7 +34,7 @@ CLRT_INLINE first_hit_layers first_hit(const vec3 O, const vec3 D, const scene_d
   first_hit_layers out;
   lreal t;
   lint tests = 0;
-  out.id = closest_intersection(&O, &D, 1, REAL_INFINITY, (lint)-1, scene, &t, &tests);
+  out.id = closest_intersection(&O, &D, 1, REAL_INFINITY, (lint)-1, MASK_TRUE, scene, &t, &tests);
   const lint found = out.id >= 0;
   const hit_surface surface = hit_material(out.id, scene); /* zeros where nothing is hit */
   const lreal along = found ? t : (lreal)0;

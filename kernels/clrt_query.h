@@ -1,8 +1,10 @@
 /* clrt_query.h - the scene-wide ray queries that the tracer, shading and
  * the layers ask, per lane:
- *   closest_intersection(O, D, tmin, tmax, self, scene, &t, &tests): the
- *     id of the nearest primitive hit in (tmin, tmax), or -1, and its
- *     distance; equal distances go to the lower id;
+ *   closest_intersection(O, D, tmin, tmax, self, active, scene, &t,
+ *     &tests): the id of the nearest primitive hit in (tmin, tmax), or -1,
+ *     and its distance; equal distances go to the lower id; for the lanes of
+ *     `active` (the others may answer -1 and infinity: a block walk does
+ *     not walk their rays);
  *   any_intersection(O, D, tmin, tmax, self, active, scene, &tests): whether
  *     anything blocks (tmin, tmax), for the lanes of `active` (shadow rays:
  *     the search may stop at the first blocker).

@@ -63,8 +63,9 @@ CLRT_INLINE lint any_flat(const vec3* O, const vec3* D, real tmin, real tmax, li
 
 #ifndef CLRT_BVH
 /* Closest hit in (tmin, tmax) per lane; the primitive id or -1. */
-CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self,
+CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
                                       const scene_data* scene, lreal* t_out, lint* tests) {
+  (void)active; /* (every lane's test costs the same as one lane's) */
   __global const clrt_params* params = scene->params;
   *tests += (lint)CLRT_SPHERE_COUNT(params);
   lreal closest = REAL_INFINITY;

@@ -89,13 +89,13 @@ CLRT_INLINE vec3 trace_camera_ray(const vec3 camera_D, const vec3 camera, const 
       lreal searched_t;
       lint searched_tests = 0;
       const lint searched =
-          closest_intersection(&O, &D, tmin, REAL_INFINITY, self, scene, &searched_t, &searched_tests);
+          closest_intersection(&O, &D, tmin, REAL_INFINITY, self, search, scene, &searched_t, &searched_tests);
       hit = search ? searched : hit;
       t = search ? searched_t : t;
       tests += search ? searched_tests : (lint)0;
     }
 #else
-    const lint hit = closest_intersection(&O, &D, tmin, REAL_INFINITY, self, scene, &t, &tests);
+    const lint hit = closest_intersection(&O, &D, tmin, REAL_INFINITY, self, alive, scene, &t, &tests);
 #endif
     COUNT_IN_LANES(counts->sphere_tests, alive, tests);
     const lint miss = alive & (hit < 0);

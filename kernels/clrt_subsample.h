@@ -108,7 +108,7 @@ CLRT_INLINE void store_camera_hits(const pixel_block* block, const int x0, const
   const vec3 D = canvas_direction(&view, TO_LREAL(x), TO_LREAL(y));
   lreal t;
   lint tests = 0;
-  const lint hit = closest_intersection(&view.origin, &D, 1, REAL_INFINITY, (lint)-1, scene, &t, &tests);
+  const lint hit = closest_intersection(&view.origin, &D, 1, REAL_INFINITY, (lint)-1, MASK_TRUE, scene, &t, &tests);
 #if CLRT_LANES == 1
   int hits[1] = {hit}, searched[1] = {tests};
 #else
