@@ -59,35 +59,48 @@ CLRT_INLINE vec3 inverse_direction(const vec3* D) {
  * widened by p on every side, p = pad x max|O|, at no cost per node. (The
  * rounding of O +- p, 2^-24 max|O|, is far inside p.) */
 #define CLRT_RAY_PAD ((real)CLRT_BVH_PAD(CLRT_PRECISION, CLRT_BVH_SPHERES))
+/* A slab's distance (plane - origin) / D as plane * inverse - origin *
+ * inverse, one multiply-add (mad(): the device's fastest, fused or not) per
+ * plane with the products below taken once per ray: it adds a rounding of
+ * ~2^-24 |O| to the plane's distance (of origin * inverse) where the
+ * difference had none, far inside the ray's padding p (2^-17 |O| and more:
+ * CLRT_BVH_PAD_*); the rest is relative to the distance, inside
+ * CLRT_BOX_SLACK, as before. */
 typedef struct box_origins {
-  vec3 lower, upper; /* where the lower and upper planes are seen from */
+  vec3 lower, upper; /* where the lower and upper planes are seen from, times the inverse direction */
 } box_origins;
 
-CLRT_INLINE box_origins padded_origins(const vec3* O) {
+CLRT_INLINE box_origins padded_origins(const vec3* O, const vec3* inverse) {
   const lreal p = BMAX(BMAX(fabs((*O).x), fabs((*O).y)), fabs((*O).z)) * CLRT_RAY_PAD;
   box_origins out;
-  out.lower = v3((*O).x + p, (*O).y + p, (*O).z + p);
-  out.upper = v3((*O).x - p, (*O).y - p, (*O).z - p);
+  out.lower = v3(((*O).x + p) * (*inverse).x, ((*O).y + p) * (*inverse).y, ((*O).z + p) * (*inverse).z);
+  out.upper = v3(((*O).x - p) * (*inverse).x, ((*O).y - p) * (*inverse).y, ((*O).z - p) * (*inverse).z);
   return out;
 }
 
+/* A distance moved down (up) by CLRT_BOX_SLACK of itself, whatever its sign:
+ * an entry (exit) distance widened beyond the slab arithmetic's rounding,
+ * which is relative to the distance (the rest is inside the ray's padding:
+ * box_origins). Clipped to (tmin, limit) before, as they are, the widening
+ * covers the bounds too. */
+#define WIDEN_DOWN(t) mad(-fabs(t), CLRT_BOX_SLACK, t)
+#define WIDEN_UP(t) mad(fabs(t), CLRT_BOX_SLACK, t)
+
 /* Lanes whose ray may meet child k's box within (tmin, limit); `enter`
- * gets their entry distances, widened by CLRT_BOX_SLACK like the exit. */
+ * gets their entry distances, widened as the exit is. */
 CLRT_INLINE lint child_overlap(__global const clrt_wide_node* node, int k, const box_origins* O, const vec3* inverse,
                                real tmin, lreal limit, lreal* enter_out) {
-  const lreal x0 = ((real)node->lower[0][k] - O->lower.x) * (*inverse).x;
-  const lreal x1 = ((real)node->upper[0][k] - O->upper.x) * (*inverse).x;
-  const lreal y0 = ((real)node->lower[1][k] - O->lower.y) * (*inverse).y;
-  const lreal y1 = ((real)node->upper[1][k] - O->upper.y) * (*inverse).y;
-  const lreal z0 = ((real)node->lower[2][k] - O->lower.z) * (*inverse).z;
-  const lreal z1 = ((real)node->upper[2][k] - O->upper.z) * (*inverse).z;
-  lreal enter = BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMIN(z0, z1));
-  lreal leave = BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMAX(z0, z1));
-  const lreal slack = (fabs(enter) + fabs(leave)) * CLRT_BOX_SLACK;
-  enter -= slack;
-  leave += slack;
+  const lreal x0 = mad((lreal)node->lower[0][k], (*inverse).x, -O->lower.x);
+  const lreal x1 = mad((lreal)node->upper[0][k], (*inverse).x, -O->upper.x);
+  const lreal y0 = mad((lreal)node->lower[1][k], (*inverse).y, -O->lower.y);
+  const lreal y1 = mad((lreal)node->upper[1][k], (*inverse).y, -O->upper.y);
+  const lreal z0 = mad((lreal)node->lower[2][k], (*inverse).z, -O->lower.z);
+  const lreal z1 = mad((lreal)node->upper[2][k], (*inverse).z, -O->upper.z);
+  /* the interval inside (tmin, limit) first, then widened (WIDEN_*) */
+  const lreal enter = WIDEN_DOWN(BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMAX(BMIN(z0, z1), (lreal)tmin)));
+  const lreal leave = WIDEN_UP(BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMIN(BMAX(z0, z1), limit)));
   *enter_out = enter;
-  return (enter <= leave) & (leave >= tmin) & (enter <= limit);
+  return enter <= leave;
 }
 
 /* One ray, every child of a node at once: the same slab test as above on
@@ -175,28 +188,31 @@ CLRT_INLINE wide_mask sort_descending(wide_mask v) {
 #endif
 
 /* The children whose box one ray may meet within (tmin, limit) (nonzero
- * lanes of the result) and their widened entry distances (`enter`); the
- * ray's padded origins (lx, ly, lz for the lower planes, ux, uy, uz for the
- * upper) and its reciprocal direction (ix, iy, iz). */
+ * lanes of the result) and their widened entry distances (`enter`). One ray
+ * knows per axis which of a box's planes it meets first (its direction's
+ * sign), so it reads that row of the node (`near_*`: the offset of the
+ * lower or upper row, in floats) and the other (`far_*`), seen from the
+ * padded origin that goes with each (times the reciprocal direction:
+ * `near_origin`, `far_origin`), and needs no min and max per pair. */
 typedef struct slab_ray {
-  real lx, ly, lz, ux, uy, uz, ix, iy, iz;
+  int near_x, near_y, near_z, far_x, far_y, far_z;
+  real near_origin_x, near_origin_y, near_origin_z, far_origin_x, far_origin_y, far_origin_z;
+  real ix, iy, iz;
 } slab_ray;
+#define NODE_ROW(node, offset) TO_WIDE_REAL(WIDE_LOAD((__global const clrt_f32*)(node) + (offset)))
 CLRT_INLINE wide_mask ray_boxes(__global const clrt_wide_node* node, const slab_ray* r, real tmin, real limit,
                                 wide_real* enter_out) {
-  const wide_real x0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[0])) - r->lx) * r->ix;
-  const wide_real x1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[0])) - r->ux) * r->ix;
-  const wide_real y0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[1])) - r->ly) * r->iy;
-  const wide_real y1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[1])) - r->uy) * r->iy;
-  const wide_real z0 = (TO_WIDE_REAL(WIDE_LOAD(node->lower[2])) - r->lz) * r->iz;
-  const wide_real z1 = (TO_WIDE_REAL(WIDE_LOAD(node->upper[2])) - r->uz) * r->iz;
-  wide_real enter = BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMIN(z0, z1));
-  wide_real leave = BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMAX(z0, z1));
-  const wide_real slack = (fabs(enter) + fabs(leave)) * CLRT_BOX_SLACK;
-  enter -= slack;
-  leave += slack;
+  const wide_real nx = mad(NODE_ROW(node, r->near_x), (wide_real)r->ix, (wide_real)-r->near_origin_x);
+  const wide_real fx = mad(NODE_ROW(node, r->far_x), (wide_real)r->ix, (wide_real)-r->far_origin_x);
+  const wide_real ny = mad(NODE_ROW(node, r->near_y), (wide_real)r->iy, (wide_real)-r->near_origin_y);
+  const wide_real fy = mad(NODE_ROW(node, r->far_y), (wide_real)r->iy, (wide_real)-r->far_origin_y);
+  const wide_real nz = mad(NODE_ROW(node, r->near_z), (wide_real)r->iz, (wide_real)-r->near_origin_z);
+  const wide_real fz = mad(NODE_ROW(node, r->far_z), (wide_real)r->iz, (wide_real)-r->far_origin_z);
+  const wide_real enter = WIDEN_DOWN(BMAX(BMAX(nx, ny), BMAX(nz, (wide_real)tmin)));
+  const wide_real leave = WIDEN_UP(BMIN(BMIN(fx, fy), BMIN(fz, (wide_real)limit)));
   const wide_mask used = TO_WIDE_MASK(WIDE_LOAD(node->count) != 0);
   *enter_out = enter;
-  return (enter <= leave) & (leave >= tmin) & (enter <= limit) & used;
+  return (enter <= leave) & used;
 }
 
 /* Lane j of a vector (LANES 1: the scalar itself). */
@@ -206,15 +222,25 @@ CLRT_INLINE wide_mask ray_boxes(__global const clrt_wide_node* node, const slab_
 /* Lane j's ray, for ray_boxes(). */
 CLRT_INLINE slab_ray slab_ray_of(const box_origins* O, const vec3* inverse, int j) {
   slab_ray r;
-  r.lx = LANE_OF(O->lower.x, j);
-  r.ly = LANE_OF(O->lower.y, j);
-  r.lz = LANE_OF(O->lower.z, j);
-  r.ux = LANE_OF(O->upper.x, j);
-  r.uy = LANE_OF(O->upper.y, j);
-  r.uz = LANE_OF(O->upper.z, j);
   r.ix = LANE_OF((*inverse).x, j);
   r.iy = LANE_OF((*inverse).y, j);
   r.iz = LANE_OF((*inverse).z, j);
+  /* (rows of clrt_wide_node: lower x, y, z, then upper x, y, z) */
+  const int ax = r.ix < 0, ay = r.iy < 0, az = r.iz < 0; /* (never 0: inverse_direction()) */
+  r.near_x = (3 * ax + 0) * CLRT_BVH_WIDTH;
+  r.near_y = (3 * ay + 1) * CLRT_BVH_WIDTH;
+  r.near_z = (3 * az + 2) * CLRT_BVH_WIDTH;
+  r.far_x = (3 * !ax + 0) * CLRT_BVH_WIDTH;
+  r.far_y = (3 * !ay + 1) * CLRT_BVH_WIDTH;
+  r.far_z = (3 * !az + 2) * CLRT_BVH_WIDTH;
+  const real lx = LANE_OF(O->lower.x, j), ly = LANE_OF(O->lower.y, j), lz = LANE_OF(O->lower.z, j);
+  const real ux = LANE_OF(O->upper.x, j), uy = LANE_OF(O->upper.y, j), uz = LANE_OF(O->upper.z, j);
+  r.near_origin_x = ax ? ux : lx;
+  r.near_origin_y = ay ? uy : ly;
+  r.near_origin_z = az ? uz : lz;
+  r.far_origin_x = ax ? lx : ux;
+  r.far_origin_y = ay ? ly : uy;
+  r.far_origin_z = az ? lz : uz;
   return r;
 }
 
@@ -403,7 +429,7 @@ CLRT_INLINE void ray_any(int root, int j, const slab_ray* r, const vec3* O, cons
 CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
                                       const scene_data* scene, lreal* t_out, lint* tests) {
   const vec3 inverse = inverse_direction(D);
-  const box_origins origins = padded_origins(O);
+  const box_origins origins = padded_origins(O, &inverse);
   lreal closest = active ? (lreal)REAL_INFINITY : (lreal)-REAL_INFINITY;
   lint best = -1;
 #if CLRT_HAS_PLANES
@@ -461,7 +487,7 @@ CLRT_INLINE lint closest_intersection(const vec3* O, const vec3* D, real tmin, r
 CLRT_INLINE lint any_intersection(const vec3* O, const vec3* D, real tmin, real tmax, lint self, lint active,
                                   const scene_data* scene, lint* tests) {
   const vec3 inverse = inverse_direction(D);
-  const box_origins origins = padded_origins(O);
+  const box_origins origins = padded_origins(O, &inverse);
 #if CLRT_HAS_TRIANGLES
   const ray_shear shear = shear_of(D);
 #endif
