@@ -311,9 +311,16 @@ CLRT_INLINE void ray_push(__global const clrt_wide_node* nodes, int index, const
 #endif
 CLRT_INLINE int entry_roots(int k, const vec3* O, const vec3* D SHEAR_ARG, lint self, const scene_data* scene,
                             lreal* t1, lreal* t2, lint* tests) {
-  const int entry = scene->primitives[k];
-  const int i = entry & CLRT_PRIMITIVE_INDEX_MASK;
   *tests += (lint)1;
+#if CLRT_HAS_TRIANGLES && !CLRT_BVH_SPHERES
+  /* Every entry a triangle: the k-th entry names place k (the host lays the
+   * triangles out in the entries' order: test_bvh.cpp), so the record's
+   * load need not wait for the entry's. */
+  const int entry = (CLRT_PRIMITIVE_TRIANGLE << CLRT_PRIMITIVE_KIND_SHIFT) | k;
+#else
+  const int entry = scene->primitives[k];
+#endif
+  const int i = entry & CLRT_PRIMITIVE_INDEX_MASK;
 #if CLRT_HAS_TRIANGLES
   if ((entry >> CLRT_PRIMITIVE_KIND_SHIFT) == CLRT_PRIMITIVE_TRIANGLE) {
     /* (entries name a triangle's place in the buffer, its record its id) */

@@ -249,6 +249,13 @@ TEST_CASE("triangle entries name their place in the leaves' order, which names e
   const std::vector<clrt_i32> slots = triangle_slots(bvh);
   REQUIRE(slots.size() == scene.triangles.size());
   for (size_t k = 0; k < slots.size(); ++k) CHECK(size_t(bvh.triangle_order[size_t(slots[k])]) == k);
+  // Without spheres, entry k names place k: the walk of a hierarchy without
+  // spheres (CLRT_BVH_SPHERES 0) reads the record at k without the entry.
+  scene.spheres.clear();
+  const Bvh triangles_only = build_bvh(scene, Precision::Robust);
+  REQUIRE(triangles_only.primitives.size() == scene.triangles.size());
+  for (size_t k = 0; k < triangles_only.primitives.size(); ++k)
+    CHECK(triangles_only.primitives[k] == ((CLRT_PRIMITIVE_TRIANGLE << CLRT_PRIMITIVE_KIND_SHIFT) | clrt_i32(k)));
 }
 
 TEST_CASE("the hierarchy is the same on any number of threads", "[bvh]") {
