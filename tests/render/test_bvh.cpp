@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -463,15 +464,28 @@ TEST_CASE("fast pads a hierarchy of triangles as the float variants do, and its 
 
 TEST_CASE("BVH images equal brute-force images on the stiff and extreme cases", "[opencl][bvh][stability][slow]") {
   const DeviceInfo device = clrt_test::test_device();
+  // One renderer per variant and acceleration for the whole suite, each
+  // preparing scene after scene: the generic kernel is one program per
+  // variant, built once (a renderer per image spent most of this case's
+  // time creating contexts and loading programs: 488 of them).
+  std::map<std::pair<Precision, Accel>, Renderer> renderers;
+  const auto image = [&](const StabilityCase& c, Precision p, Accel accel) {
+    auto it = renderers.find({p, accel});
+    if (it == renderers.end()) {
+      KernelConfig config;
+      config.precision = p;
+      config.specialize = false;
+      config.accel = accel;
+      it = renderers.emplace(std::make_pair(p, accel), clrt_test::renderer(config)).first;
+    }
+    it->second.prepare(c.scene, 48, 36, c.depth, c.sampling);
+    return it->second.render();
+  };
   for (const StabilityCase& c : stability_suite()) {
     for (Precision p : all_precisions()) {
       if (!unsupported_reason(p, device).empty()) continue;
       INFO(c.name() << ", " << precision_name(p));
-      KernelConfig config;
-      config.precision = p;
-      config.specialize = false;  // one program per variant for the whole suite
-      CHECK(pixels_differing(render(c.scene, 48, 36, c.depth, config, Accel::Bvh, nullptr, c.sampling),
-                             render(c.scene, 48, 36, c.depth, config, Accel::None, nullptr, c.sampling)) == 0);
+      CHECK(pixels_differing(image(c, p, Accel::Bvh), image(c, p, Accel::None)) == 0);
     }
   }
 }
