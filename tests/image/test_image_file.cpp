@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,15 @@ TEST_CASE("PFM is written by clrt itself: little-endian rows bottom to top", "[i
   CHECK_NOTHROW(clrt::check_output_format(dir / "y.pfm"));
 }
 
+// `bytes` with every "YYYY:MM:DD hh:mm:ss" time set to zeros: OpenEXR
+// stamps each file with the second it was written (its capDate attribute),
+// and two encodings straddle a second now and then (a sanitized run here
+// failed on it once).
+std::string undated(std::string bytes) {
+  static const std::regex stamp("[0-9]{4}:[0-9]{2}:[0-9]{2} [0-9]{2}:[0-9]{2}:[0-9]{2}");
+  return std::regex_replace(bytes, stamp, "0000:00:00 00:00:00");
+}
+
 TEST_CASE("encode_image gives the bytes write_image writes, and a Unit frame writes as its Float twin", "[image]") {
   TempDir dir;
   const clrt::Image img = sample_frame();
@@ -118,9 +128,10 @@ TEST_CASE("encode_image gives the bytes write_image writes, and a Unit frame wri
     INFO("." << ext);
     const std::string path = dir / ("f." + ext);
     clrt::write_image(img, path, meta);
-    CHECK(clrt::encode_image(img, "f", meta, ext) == clrt_test::slurp(path));
-    CHECK(clrt::encode_image(img, "f." + ext, meta) == clrt_test::slurp(path));
-    CHECK(clrt::encode_image(unit, "f", meta, "." + ext) == clrt_test::slurp(path));
+    const std::string file = undated(clrt_test::slurp(path));
+    CHECK(undated(clrt::encode_image(img, "f", meta, ext)) == file);
+    CHECK(undated(clrt::encode_image(img, "f." + ext, meta)) == file);
+    CHECK(undated(clrt::encode_image(unit, "f", meta, "." + ext)) == file);
   }
   CHECK_THROWS_AS(clrt::encode_image(img, "f", {}, "notaformat"), clrt::UserError);
 }
