@@ -124,6 +124,22 @@ Image render(const Scene& scene, int width, int height, int depth, KernelConfig 
 // its own.
 void check_wide(const Bvh& bvh) {
   REQUIRE(!bvh.wide.empty());
+  // Each binary node's entries, (first, count): one run of the list, since
+  // the builder appends them depth first (-1: not one run). Children come
+  // after their parent in the list.
+  std::vector<std::pair<int, int>> runs(bvh.nodes.size());
+  for (size_t b = bvh.nodes.size(); b-- > 0;) {
+    const clrt_bvh_node& node = bvh.nodes[b];
+    if (node.count >= 0) {
+      runs[b] = {node.first, node.count};
+      continue;
+    }
+    REQUIRE(size_t(node.first) > b);
+    const auto left = runs[size_t(node.first)], right = runs[size_t(node.first) + 1];
+    const bool joined = left.second == 0 || right.second == 0 || left.first + left.second == right.first;
+    runs[b] = {left.second == 0 ? right.first : (joined && left.first >= 0 ? left.first : -1),
+               left.second + right.second};
+  }
   std::vector<int> entry_seen(bvh.primitives.size(), 0), node_seen(bvh.wide.size(), 0);
   struct Visit {
     size_t node;
@@ -150,19 +166,17 @@ void check_wide(const Bvh& bvh) {
         REQUIRE(size_t(e) < entry_seen.size());
         ++entry_seen[size_t(e)];
       }
-      // (a leaf's box holds its primitives: it is a binary node's box, as
-      // check_structure() checks; here, that it is some node's box)
+      // (a leaf's box holds its primitives: it is the box of a binary node
+      // whose subtree holds exactly those entries, and such boxes hold
+      // their primitives, as check_structure() checks)
       if (n.count[k] == 0) continue;
       bool found = false;
-      for (const clrt_bvh_node& b : bvh.nodes)
-        if (b.count == n.count[k] && b.first == n.child[k]) {
-          found = true;
-          for (int a = 0; a < 3; ++a) {
-            CHECK(b.lower[a] == n.lower[a][k]);
-            CHECK(b.upper[a] == n.upper[a][k]);
-          }
-          break;
-        }
+      for (size_t b = 0; b < bvh.nodes.size() && !found; ++b) {
+        if (runs[b].first != n.child[k] || runs[b].second != n.count[k]) continue;
+        found = true;
+        for (int a = 0; a < 3; ++a)
+          found = found && bvh.nodes[b].lower[a] == n.lower[a][k] && bvh.nodes[b].upper[a] == n.upper[a][k];
+      }
       CHECK(found);
     }
   }
@@ -188,6 +202,19 @@ TEST_CASE("the wide hierarchy holds every entry once, in the binary tree's boxes
   Scene same = random_spheres(1);
   same.spheres.assign(200, same.spheres[0]);
   check_wide(build_bvh(same, Precision::Robust));
+  // Four clusters of six spheres almost in one place: the binary tree
+  // splits each into leaves (each part's box a little smaller), more than a
+  // node's 8 slots in all; the collapse makes some cluster one leaf (a
+  // node's visit would save no test), whose entries run over binary leaves.
+  Scene cluster = random_spheres(0);
+  for (int i = 0; i < 24; ++i) cluster.spheres.push_back({{1e-3 * i + 100 * (i / 6), 1, 5}, 1, {1, 2, 3}, -1, 0});
+  const Bvh clustered = build_bvh(cluster, Precision::Robust);
+  check_wide(clustered);
+  int merged = 0;
+  for (const clrt_wide_node& node : clustered.wide)
+    for (int k = 0; k < CLRT_BVH_WIDTH; ++k) merged += node.count[k] == 6;
+  for (const clrt_bvh_node& node : clustered.nodes) CHECK(node.count <= kBvhLeafSize);
+  CHECK(merged > 0);
 }
 
 TEST_CASE("the hierarchy holds every sphere once, in boxes that hold them", "[bvh]") {
