@@ -168,7 +168,8 @@ KernelConfig KernelOptions::config() const {
 
 void LaunchOptions::add(CLI::App* cmd) {
   cmd->add_option("--local", local_size,
-                  "Local work size WxH in work-items; unset: the kernel's preferred multiple x 1")
+                  "Local work size WxH in work-items; unset: the kernel's preferred multiple x 1 (1x1 for blocks of "
+                  "lanes on CPUs)")
       ->group(kDeveloperGroup);
   cmd->add_option("--max-launch-ms", max_launch_ms,
                   "Split the frame so no kernel launch exceeds this many ms (0 = no limit); unset: 500 on GPUs, no "

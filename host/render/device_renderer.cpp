@@ -123,9 +123,18 @@ void DeviceRenderer::use_program(const std::string& opts) {
     built.kernels.push_back(kernel);
   }
   // Default local size: (preferred multiple, 1), within every kernel's limit
-  // (a tile's launches share it).
+  // (a tile's launches share it); (1, 1) for a block of lanes on a CPU. A
+  // block work-item already fills the SIMD lanes with its 16 pixels (the
+  // preferred multiple is for packing work-items into them), and a group of
+  // 16 blocks, 256 pixels, left PoCL's threads waiting on each other at the
+  // end of every launch: frames in 24-row bands took 1.3x one launch's time
+  // on the million-triangle mesh, and the lanes probe, which times bands of
+  // 8 rows, chose one ray per work-item there where blocks render the frame
+  // 1.2x faster (docs/results/wide-hierarchy.md).
   const cl::Kernel& first = built.kernels.front();
-  const size_t pm = first.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device_.device);
+  const size_t pm = config_.lanes > 1 && is_cpu_type(device_.type)
+                        ? 1
+                        : first.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(device_.device);
   built.max_work_group = std::numeric_limits<size_t>::max();
   for (const cl::Kernel& kernel : built.kernels)
     built.max_work_group =
