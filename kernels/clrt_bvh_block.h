@@ -1,6 +1,7 @@
 /* clrt_bvh_block.h - the pieces of clrt_bvh.h's walk that only a block of
  * lanes (CLRT_LANES > 1) takes: reductions over the lanes, lane masks as
- * bits, the push of a node's children one after the other (block_push()),
+ * bits, the push of a node's children one after the other (block_push(),
+ * which asks the cache for each child pushed: prefetch_child()),
  * and the threshold below which a block's lanes walk alone. Included by
  * clrt_bvh.h where they are used, after the slab tests and the stack. */
 #ifndef CLRT_BVH_BLOCK_H
@@ -34,9 +35,9 @@ CLRT_INLINE lint bits_lanes(int bits) {
  * bits and their smallest widened entry distance, keeping those pushed
  * since the call farthest first (insertion: at most CLRT_BVH_WIDTH). (Block
  * walks are float builds only.) */
-CLRT_INLINE void block_push(__global const clrt_wide_node* nodes, int index, const box_origins* O, const vec3* inverse,
-                            real tmin, lreal limit, lint active, walk_stack* stack, int* top) {
-  __global const clrt_wide_node* node = &nodes[index];
+CLRT_INLINE void block_push(const scene_data* scene, int index, const box_origins* O, const vec3* inverse, real tmin,
+                            lreal limit, lint active, walk_stack* stack, int* top) {
+  __global const clrt_wide_node* node = &scene->nodes[index];
   const int base = *top;
   for (int slot = 0; slot < CLRT_BVH_WIDTH; ++slot) {
     if (node->count[slot] == 0) continue;
@@ -55,6 +56,7 @@ CLRT_INLINE void block_push(__global const clrt_wide_node* nodes, int index, con
     stack->node[k] = index;
     stack->enter[k] = key;
     stack->lanes[k] = lane_bits(lanes);
+    prefetch_child(scene, node, slot);
   }
 }
 
