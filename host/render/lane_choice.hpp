@@ -46,11 +46,15 @@ std::vector<RowBand> probe_bands(int height);
 // candidates taking turns, and a candidate's time is its fastest round (the
 // machine's load comes and goes; the fastest round is the one least
 // disturbed). The first launch of a program is a round of its own that is
-// not timed (PoCL compiles its work-group function there). Four rounds:
+// not timed (PoCL compiles its work-group function there). Eight rounds:
 // with two, a band's time moved by up to 2x from round to round on 1 000
 // spheres at 640x360 and the probe picked the 1.4x slower mode in 2 of 6
-// runs; with four it picked the faster in 5 of 5 (docs/results/wide-hierarchy.md).
-constexpr int kProbeRounds = 4;
+// runs; with four it picked the faster in 5 of 5 there, but the slower
+// (one ray per work-item, 1.2x) in 7 of 50 runs on the million-triangle
+// mesh, and with eight in none of 50 (docs/results/wide-hierarchy.md). The
+// rounds cost the work of 1.2-1.4 frames (both candidates, 7-9% of the rows
+// each round), once per scene and device in a process.
+constexpr int kProbeRounds = 8;
 
 // What identifies a probe's answer: the device, the program's options (the
 // scene's features, precision and outputs), and a hash of everything the
