@@ -155,8 +155,7 @@ class DeviceRenderer {
     std::vector<cl::Kernel> kernels;  // a tile's launches, in order (render_kernel_names())
     std::string options;
     int lanes = 0;              // config_.lanes it was built for
-    int default_local_x =
-        1;  // the first kernel's preferred work-group size multiple (1: blocks on CPUs), within max_work_group
+    int default_local_x = 1;    // the preferred work-group size multiple (blocks on CPUs: 1), within max_work_group
     size_t max_work_group = 1;  // CL_KERNEL_WORK_GROUP_SIZE, the least of the kernels'
   };
   // Makes the program of `options` (config_.lanes as built) the one

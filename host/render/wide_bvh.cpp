@@ -100,11 +100,10 @@ class Collapser {
   // root that is a leaf, that leaf), appending (depth first) the wide nodes
   // of the slots that are nodes.
   void build(size_t wide, size_t node) {
-    std::vector<size_t> slots;
-    slots.reserve(CLRT_BVH_WIDTH);
+    Slots slots;
     const clrt_bvh_node& top = at(node);
     if (top.count >= 0) {
-      slots.push_back(node);
+      slots.add(node);
     } else {
       const int k = int(choice_[node] >> kSpreadShift & 7);
       gather(size_t(top.first), k, slots);
@@ -112,7 +111,7 @@ class Collapser {
     }
     clrt_wide_node filled{};  // empty slots: count 0, never entered
     std::array<size_t, CLRT_BVH_WIDTH> inner_wide{};
-    for (size_t k = 0; k < slots.size(); ++k) {
+    for (int k = 0; k < slots.used; ++k) {
       const clrt_bvh_node& n = at(slots[k]);
       for (int a = 0; a < 3; ++a) {
         filled.lower[a][k] = n.lower[a];
@@ -129,13 +128,24 @@ class Collapser {
       out_.emplace_back();
     }
     out_[wide] = filled;
-    for (size_t k = 0; k < slots.size(); ++k)
+    for (int k = 0; k < slots.used; ++k)
       if (filled.count[k] < 0) build(inner_wide[k], slots[k]);
   }
 
  private:
+  // A wide node's slots: the binary nodes they hold, in order.
+  struct Slots {
+    std::array<size_t, CLRT_BVH_WIDTH> node{};
+    int used = 0;
+    void add(size_t binary) {
+      if (used == CLRT_BVH_WIDTH) throw std::logic_error("collapse_bvh: more slots than a node has");
+      node[size_t(used++)] = binary;
+    }
+    size_t operator[](int k) const { return node[size_t(k)]; }
+  };
+
   // The slots subtree `node` takes when given `j`, in the children's order.
-  void gather(size_t node, int j, std::vector<size_t>& slots) const {
+  void gather(size_t node, int j, Slots& slots) const {
     for (; j > 1; --j) {
       const int k = int(choice_[node] >> (1 + 3 * (j - 2)) & 7);
       if (k == 0) continue;  // fewer slots cost no more
@@ -143,7 +153,7 @@ class Collapser {
       gather(size_t(at(node).first) + 1, j - k, slots);
       return;
     }
-    slots.push_back(node);
+    slots.add(node);
   }
 
   const clrt_bvh_node& at(size_t node) const {
