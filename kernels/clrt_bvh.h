@@ -21,7 +21,8 @@
  * whole (ray_push()). A block of lanes (CLRT_LANES > 1) tests the children
  * one after the other, one SIMD lane per ray, and enters a child that any
  * lane needs, for the lanes that met it; below a node that only one or two
- * lanes met, each of them walks alone. Either way the hit children, leaves
+ * lanes met, each of them walks alone, and tests a leaf's triangles side by
+ * side, one per SIMD lane (clrt_leaf_alone.h). Either way the hit children, leaves
  * and inner nodes alike, are pushed nearest last, each with its entry
  * distance (the smallest over the lanes that meet it), so the nearest is
  * visited first and a popped child beyond the closest hit is skipped. Shadow
@@ -106,86 +107,7 @@ CLRT_INLINE lint child_overlap(__global const clrt_wide_node* node, int k, const
 /* One ray, every child of a node at once: the same slab test as above on
  * CLRT_BVH_WIDTH-wide vectors of the precision's scalar (the one-ray walk,
  * and a block's rays that walk alone: below). */
-#if CLRT_BVH_WIDTH == 4
-#define WIDE_LOAD(p) vload4(0, p)
-#define WIDE_STORE(v, p) vstore4(v, 0, p)
-#if CLRT_PRECISION == CLRT_PRECISION_FP64
-typedef double4 wide_real;
-typedef long4 wide_mask;
-#define TO_WIDE_REAL(v) convert_double4(v)
-#define TO_WIDE_MASK(v) convert_long4(v)
-#define WIDE_MASK_TO_INT(v) convert_int4(v)
-#define AS_WIDE_KEY(v) as_long4(v)
-#define AS_WIDE_REAL(v) as_double4(v)
-#else
-typedef float4 wide_real;
-typedef int4 wide_mask;
-#define TO_WIDE_REAL(v) (v)
-#define TO_WIDE_MASK(v) (v)
-#define WIDE_MASK_TO_INT(v) (v)
-#define AS_WIDE_KEY(v) as_int4(v)
-#define AS_WIDE_REAL(v) as_float4(v)
-#endif
-#define WIDE_KEY_IOTA ((wide_mask)(0, 1, 2, 3))
-typedef int4 wide_int;
-CLRT_INLINE int wide_sum(int4 v) {
-  const int2 h = v.lo + v.hi;
-  return h.x + h.y;
-}
-/* Sorts keys largest first: a bitonic network of swizzles, min and max. */
-CLRT_INLINE wide_mask sort_descending(wide_mask v) {
-  wide_mask p = v.s1032;
-  v = select(min(v, p), max(v, p), (wide_mask)(-1, 0, 0, -1));
-  p = v.s2301;
-  v = select(min(v, p), max(v, p), (wide_mask)(-1, -1, 0, 0));
-  p = v.s1032;
-  return select(min(v, p), max(v, p), (wide_mask)(-1, 0, -1, 0));
-}
-#elif CLRT_BVH_WIDTH == 8
-#define WIDE_LOAD(p) vload8(0, p)
-#define WIDE_STORE(v, p) vstore8(v, 0, p)
-#if CLRT_PRECISION == CLRT_PRECISION_FP64
-typedef double8 wide_real;
-typedef long8 wide_mask;
-#define TO_WIDE_REAL(v) convert_double8(v)
-#define TO_WIDE_MASK(v) convert_long8(v)
-#define WIDE_MASK_TO_INT(v) convert_int8(v)
-#define AS_WIDE_KEY(v) as_long8(v)
-#define AS_WIDE_REAL(v) as_double8(v)
-#else
-typedef float8 wide_real;
-typedef int8 wide_mask;
-#define TO_WIDE_REAL(v) (v)
-#define TO_WIDE_MASK(v) (v)
-#define WIDE_MASK_TO_INT(v) (v)
-#define AS_WIDE_KEY(v) as_int8(v)
-#define AS_WIDE_REAL(v) as_float8(v)
-#endif
-#define WIDE_KEY_IOTA ((wide_mask)(0, 1, 2, 3, 4, 5, 6, 7))
-typedef int8 wide_int;
-CLRT_INLINE int wide_sum(int8 v) {
-  const int4 h4 = v.lo + v.hi;
-  const int2 h = h4.lo + h4.hi;
-  return h.x + h.y;
-}
-/* Sorts keys largest first: a bitonic network of swizzles, min and max. */
-CLRT_INLINE wide_mask sort_descending(wide_mask v) {
-  wide_mask p = v.s10325476;
-  v = select(min(v, p), max(v, p), (wide_mask)(-1, 0, 0, -1, -1, 0, 0, -1));
-  p = v.s23016745;
-  v = select(min(v, p), max(v, p), (wide_mask)(-1, -1, 0, 0, 0, 0, -1, -1));
-  p = v.s10325476;
-  v = select(min(v, p), max(v, p), (wide_mask)(-1, 0, -1, 0, 0, -1, 0, -1));
-  p = v.s45670123;
-  v = select(min(v, p), max(v, p), (wide_mask)(-1, -1, -1, -1, 0, 0, 0, 0));
-  p = v.s23016745;
-  v = select(min(v, p), max(v, p), (wide_mask)(-1, -1, 0, 0, -1, -1, 0, 0));
-  p = v.s10325476;
-  return select(min(v, p), max(v, p), (wide_mask)(-1, 0, -1, 0, -1, 0, -1, 0));
-}
-#else
-#error "CLRT_BVH_WIDTH must be 4 or 8"
-#endif
+#include "clrt_bvh_wide.h"
 
 /* The children whose box one ray may meet within (tmin, limit) (nonzero
  * lanes of the result) and their widened entry distances (`enter`). One ray
@@ -351,8 +273,12 @@ CLRT_INLINE int entry_roots(int k, const vec3* O, const vec3* D SHEAR_ARG, lint 
  * prefetch() does nothing on PoCL; clang's builtin gives the CPU's prefetch
  * instruction. Only where clang compiles the kernel for a CPU (PoCL), and
  * not with -DCLRT_NO_PREFETCH (for A/B runs through --cl-options). Block
- * walks only (block_push()): the one-ray walk's loop over the pushed
- * children made it 6-8% slower on 10^4-10^6 spheres. */
+ * walks ask for each child they push (block_push()); one ray's walk asks,
+ * on each visit, for the entry below the one it pops (PREFETCH_NEXT: the
+ * next it visits when this one is a leaf, and a sibling it comes back to):
+ * 1.06x on the million-triangle mesh. Asking for every child it pushes
+ * made it 6-8% slower on 10^4-10^6 spheres, for the next two 5%
+ * (docs/results/wide-hierarchy.md). */
 #if (defined(__x86_64__) || defined(__aarch64__)) && !defined(CLRT_NO_PREFETCH)
 #define CLRT_CACHE_LINE 64
 CLRT_INLINE void prefetch_bytes(__global const void* p, int bytes) {
@@ -375,6 +301,8 @@ CLRT_INLINE void prefetch_child(const scene_data* scene, __global const clrt_wid
 #else
 #define prefetch_child(scene, node, slot)
 #endif
+#define PREFETCH_NEXT(top, base) \
+  if ((top) > (base)) prefetch_child(scene, &nodes[stack->node[(top)-1]], KEY_SLOT(stack->enter[(top)-1]))
 
 /* The primitive entries of leaf child [first, first + count) against the
  * lanes' rays: the nearest root in (tmin, tmax) below `closest`, ties to
@@ -407,6 +335,8 @@ CLRT_INLINE lint any_in_leaf(int first, int count, const vec3* O, const vec3* D 
   return blocked;
 }
 
+#include "clrt_leaf_alone.h"
+
 /* Lane j's closest-hit walk of the subtree under node `root` (LANES 1:
  * the one ray's whole walk), on the stack above `base`. A leaf's
  * primitives are tested against every lane's ray (in a block, it costs the
@@ -417,6 +347,9 @@ CLRT_INLINE void ray_closest(int root, int j, const slab_ray* r, const vec3* O, 
                              real tmax, lint self, const scene_data* scene, lreal* closest, lint* best, lint* tests,
                              walk_stack* stack, int base) {
   __global const clrt_wide_node* nodes = scene->nodes;
+#if defined(CLRT_LEAF_ALONE)
+  const lone_ray lone = lone_ray_of(O, shear, self, j);
+#endif
   int top = base, index = root;
   for (;;) {
     ray_push(nodes, index, r, tmin, BMIN(LANE_OF(*closest, j), tmax), stack, &top);
@@ -424,13 +357,18 @@ CLRT_INLINE void ray_closest(int root, int j, const slab_ray* r, const vec3* O, 
     while (top > base) {
       --top;
       if (stack->enter[top] > LANE_OF(*closest, j)) continue;
+      PREFETCH_NEXT(top, base);
       int count;
       const int child = entry_child(nodes, stack, top, &count);
       if (count < 0) {
         index = child;
         break;
       }
+#if defined(CLRT_LEAF_ALONE)
+      closest_in_leaf_alone(child, count, &lone, tmin, tmax, scene, closest, best, tests);
+#else
       closest_in_leaf(child, count, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, closest, best, tests);
+#endif
     }
     if (index < 0) return;
   }
@@ -442,20 +380,31 @@ CLRT_INLINE void ray_any(int root, int j, const slab_ray* r, const vec3* O, cons
                          real tmax, lint self, const scene_data* scene, lint* blocked, lint* tests, walk_stack* stack,
                          int base) {
   __global const clrt_wide_node* nodes = scene->nodes;
+#if defined(CLRT_LEAF_ALONE)
+  const lone_ray lone = lone_ray_of(O, shear, self, j);
+#endif
   int top = base, index = root;
   for (;;) {
     ray_push(nodes, index, r, tmin, tmax, stack, &top);
     index = -1;
     while (top > base) {
       --top;
+      PREFETCH_NEXT(top, base);
       int count;
       const int child = entry_child(nodes, stack, top, &count);
       if (count < 0) {
         index = child;
         break;
       }
+#if defined(CLRT_LEAF_ALONE)
+      if (any_in_leaf_alone(child, count, &lone, tmin, tmax, scene, tests)) {
+        *blocked |= LANE_IOTA == (lint)j;
+        return;
+      }
+#else
       *blocked |= any_in_leaf(child, count, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, tests);
       if (LINT_LANE(*blocked, j)) return;
+#endif
     }
     if (index < 0) return;
   }

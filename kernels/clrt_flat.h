@@ -41,8 +41,11 @@ typedef struct {
   lreal sx, sy, sz;
 } ray_shear;
 
+/* Component k (0 x, 1 y, 2 z) of (x, y, z): per lane, or one k for all. */
+#define PICK_AXIS(x, y, z, k) ((k) == 0 ? (x) : ((k) == 1 ? (y) : (z)))
+
 CLRT_INLINE lreal pick_axis(const vec3 v, const lint k) {
-  return k == (lint)0 ? v.x : (k == (lint)1 ? v.y : v.z);
+  return PICK_AXIS(v.x, v.y, v.z, k);
 }
 
 CLRT_INLINE ray_shear shear_of(const vec3* Dp) {
@@ -64,6 +67,26 @@ CLRT_INLINE ray_shear shear_of(const vec3* Dp) {
   return s;
 }
 
+/* The test itself, from the vertices minus the ray origin (A, B, C, by
+ * component) and the ray's shear (axes kx, ky, kz, factors sx, sy, sz):
+ * declares `t`, the distance (infinity on a miss), of type T with masks of
+ * type M. A macro, so that the two tests that take it - one triangle
+ * against each lane's ray (triangle_distance()) and one ray against a
+ * triangle in each lane (clrt_leaf_alone.h) - do the same operations in the
+ * same order and round alike. Its user turns FMA contraction off. */
+#define WATERTIGHT_DISTANCE(T, M, Ax, Ay, Az, Bx, By, Bz, Cx, Cy, Cz, kx, ky, kz, sx, sy, sz, t)                \
+  const T a_z_ = PICK_AXIS(Ax, Ay, Az, kz), b_z_ = PICK_AXIS(Bx, By, Bz, kz), c_z_ = PICK_AXIS(Cx, Cy, Cz, kz); \
+  const T a_x_ = PICK_AXIS(Ax, Ay, Az, kx) - (sx)*a_z_, a_y_ = PICK_AXIS(Ax, Ay, Az, ky) - (sy)*a_z_;           \
+  const T b_x_ = PICK_AXIS(Bx, By, Bz, kx) - (sx)*b_z_, b_y_ = PICK_AXIS(Bx, By, Bz, ky) - (sy)*b_z_;           \
+  const T c_x_ = PICK_AXIS(Cx, Cy, Cz, kx) - (sx)*c_z_, c_y_ = PICK_AXIS(Cx, Cy, Cz, ky) - (sy)*c_z_;           \
+  const T u_ = c_x_ * b_y_ - c_y_ * b_x_;                                                                       \
+  const T v_ = a_x_ * c_y_ - a_y_ * c_x_;                                                                       \
+  const T w_ = b_x_ * a_y_ - b_y_ * a_x_;                                                                       \
+  const M outside_ = ((u_ < 0) | (v_ < 0) | (w_ < 0)) & ((u_ > 0) | (v_ > 0) | (w_ > 0));                       \
+  const T det_ = u_ + v_ + w_;                                                                                  \
+  const T hit_ = (u_ * ((sz)*a_z_) + v_ * ((sz)*b_z_) + w_ * ((sz)*c_z_)) / det_;                               \
+  const T t = (outside_ | (det_ == 0)) ? (T)REAL_INFINITY : hit_
+
 /* Distance along D to triangle `tri` per lane; infinity on a miss. */
 CLRT_INLINE lreal triangle_distance(const vec3* O, const ray_shear* s, __global const clrt_triangle* tri,
                                     __global const clrt_triangle_lo* lo) {
@@ -71,17 +94,9 @@ CLRT_INLINE lreal triangle_distance(const vec3* O, const ray_shear* s, __global 
   const vec3 A = vsub(VEC3_FROM_HI_LO(tri->v0, lo->v0_lo), *O);
   const vec3 B = vsub(VEC3_FROM_HI_LO(tri->v1, lo->v1_lo), *O);
   const vec3 C = vsub(VEC3_FROM_HI_LO(tri->v2, lo->v2_lo), *O);
-  const lreal a_z = pick_axis(A, s->kz), b_z = pick_axis(B, s->kz), c_z = pick_axis(C, s->kz);
-  const lreal a_x = pick_axis(A, s->kx) - s->sx * a_z, a_y = pick_axis(A, s->ky) - s->sy * a_z;
-  const lreal b_x = pick_axis(B, s->kx) - s->sx * b_z, b_y = pick_axis(B, s->ky) - s->sy * b_z;
-  const lreal c_x = pick_axis(C, s->kx) - s->sx * c_z, c_y = pick_axis(C, s->ky) - s->sy * c_z;
-  const lreal u = c_x * b_y - c_y * b_x;
-  const lreal v = a_x * c_y - a_y * c_x;
-  const lreal w = b_x * a_y - b_y * a_x;
-  const lint outside = ((u < 0) | (v < 0) | (w < 0)) & ((u > 0) | (v > 0) | (w > 0));
-  const lreal det = u + v + w;
-  const lreal t = (u * (s->sz * a_z) + v * (s->sz * b_z) + w * (s->sz * c_z)) / det;
-  return (outside | (det == 0)) ? (lreal)REAL_INFINITY : t;
+  WATERTIGHT_DISTANCE(lreal, lint, A.x, A.y, A.z, B.x, B.y, B.z, C.x, C.y, C.z, s->kx, s->ky, s->kz, s->sx, s->sy,
+                      s->sz, t);
+  return t;
 }
 #endif
 

@@ -488,6 +488,30 @@ TEST_CASE("fast pads a hierarchy of triangles as the float variants do, and its 
   }
 }
 
+TEST_CASE("a hierarchy of triangles alone: its image is brute force's at every lane count", "[opencl][bvh][slow]") {
+  // Blocks of lanes walk a subtree lane by lane below a node that few of
+  // their rays meet (the tori's reflection rays, mostly), and there test a
+  // leaf's triangles against the one ray side by side, one per SIMD lane
+  // (kernels/clrt_leaf_alone.h): the same distances and the same rule for
+  // the nearest as the loop over every triangle, so the same image, bit for
+  // bit. (1 lane: every ray walks alone, one triangle at a time.)
+  const clrt_test::TempDir folder;
+  const MeshGrid grid = torus_grid(3000, "grid.obj");
+  std::ofstream(folder / "grid.obj") << grid.obj;
+  std::ofstream(folder / "scene.json") << grid.scene_json;
+  const Scene scene = load_scene(folder / "scene.json");
+  REQUIRE(scene.spheres.empty());
+  for (int lanes : {1, 4, 8, 16}) {
+    INFO(lanes << " lanes");
+    KernelConfig config;
+    config.lanes = lanes;
+    FrameStats with_bvh;
+    const Image a = render(scene, 64, 48, 3, config, Accel::Bvh, &with_bvh);
+    CHECK(with_bvh.bvh);
+    CHECK(pixels_differing(a, render(scene, 64, 48, 3, config, Accel::None)) == 0);
+  }
+}
+
 TEST_CASE("BVH images equal brute-force images on the stiff and extreme cases", "[opencl][bvh][stability][slow]") {
   const DeviceInfo device = clrt_test::test_device();
   // Variant by variant, two renderers (hierarchy, every primitive) that
