@@ -185,6 +185,16 @@ void check_wide(const Bvh& bvh) {
   CHECK(deepest_stack <= CLRT_BVH_STACK);
 }
 
+// `clrt scaling`'s mesh scene of about `triangles` triangles (tori over a
+// mirror floor), written out and loaded as a user's would be.
+Scene torus_grid_scene(size_t triangles) {
+  const clrt_test::TempDir folder;
+  const MeshGrid grid = torus_grid(triangles, "grid.obj");
+  std::ofstream(folder / "grid.obj") << grid.obj;
+  std::ofstream(folder / "scene.json") << grid.scene_json;
+  return load_scene(folder / "scene.json");
+}
+
 }  // namespace
 
 TEST_CASE("the wide hierarchy holds every entry once, in the binary tree's boxes", "[bvh]") {
@@ -457,11 +467,7 @@ TEST_CASE("fast pads a hierarchy of triangles as the float variants do, and its 
     WARN("skipped on " << device.platform_name);
     return;
   }
-  const clrt_test::TempDir folder;
-  const MeshGrid grid = torus_grid(1500, "grid.obj");
-  std::ofstream(folder / "grid.obj") << grid.obj;
-  std::ofstream(folder / "scene.json") << grid.scene_json;
-  const Scene scene = load_scene(folder / "scene.json");
+  const Scene scene = torus_grid_scene(1500);
   REQUIRE(scene.spheres.empty());
   REQUIRE(!scene.planes.empty());  // the mirror floor
   for (int lanes : {1, 16}) {
@@ -495,11 +501,7 @@ TEST_CASE("a hierarchy of triangles alone: its image is brute force's at every l
   // (kernels/clrt_leaf_alone.h): the same distances and the same rule for
   // the nearest as the loop over every triangle, so the same image, bit for
   // bit. (1 lane: every ray walks alone, one triangle at a time.)
-  const clrt_test::TempDir folder;
-  const MeshGrid grid = torus_grid(3000, "grid.obj");
-  std::ofstream(folder / "grid.obj") << grid.obj;
-  std::ofstream(folder / "scene.json") << grid.scene_json;
-  const Scene scene = load_scene(folder / "scene.json");
+  const Scene scene = torus_grid_scene(3000);
   REQUIRE(scene.spheres.empty());
   for (int lanes : {1, 4, 8, 16}) {
     INFO(lanes << " lanes");
