@@ -21,9 +21,9 @@
  * whole (ray_push()). A block of lanes (CLRT_LANES > 1) tests the children
  * one after the other, one SIMD lane per ray, and enters a child that any
  * lane needs, for the lanes that met it; below a node that only one or two
- * lanes met, each of them walks alone, and tests a leaf's triangles side by
- * side, one per SIMD lane (clrt_leaf_alone.h). Either way the hit children, leaves
- * and inner nodes alike, are pushed nearest last, each with its entry
+ * lanes met, each of them walks alone, and tests a leaf's primitives side
+ * by side, one per SIMD lane (clrt_leaf_alone.h). Either way the hit
+ * children, leaves and inner nodes alike, are pushed nearest last, each with its entry
  * distance (the smallest over the lanes that meet it), so the nearest is
  * visited first and a popped child beyond the closest hit is skipped. Shadow
  * rays take any hit and end the walk at the first; they too go nearest
@@ -348,7 +348,7 @@ CLRT_INLINE void ray_closest(int root, int j, const slab_ray* r, const vec3* O, 
                              walk_stack* stack, int base) {
   __global const clrt_wide_node* nodes = scene->nodes;
 #if defined(CLRT_LEAF_ALONE)
-  const lone_ray lone = lone_ray_of(O, shear, self, j);
+  const lone_ray lone = lone_ray_of(O, D SHEAR_PASS_PTR, self, j);
 #endif
   int top = base, index = root;
   for (;;) {
@@ -365,7 +365,7 @@ CLRT_INLINE void ray_closest(int root, int j, const slab_ray* r, const vec3* O, 
         break;
       }
 #if defined(CLRT_LEAF_ALONE)
-      closest_in_leaf_alone(child, count, &lone, tmin, tmax, scene, closest, best, tests);
+      closest_in_leaf_alone(child, count, &lone, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, closest, best, tests);
 #else
       closest_in_leaf(child, count, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, closest, best, tests);
 #endif
@@ -381,7 +381,7 @@ CLRT_INLINE void ray_any(int root, int j, const slab_ray* r, const vec3* O, cons
                          int base) {
   __global const clrt_wide_node* nodes = scene->nodes;
 #if defined(CLRT_LEAF_ALONE)
-  const lone_ray lone = lone_ray_of(O, shear, self, j);
+  const lone_ray lone = lone_ray_of(O, D SHEAR_PASS_PTR, self, j);
 #endif
   int top = base, index = root;
   for (;;) {
@@ -397,7 +397,7 @@ CLRT_INLINE void ray_any(int root, int j, const slab_ray* r, const vec3* O, cons
         break;
       }
 #if defined(CLRT_LEAF_ALONE)
-      if (any_in_leaf_alone(child, count, &lone, tmin, tmax, scene, tests)) {
+      if (any_in_leaf_alone(child, count, &lone, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, blocked, tests)) {
         *blocked |= LANE_IOTA == (lint)j;
         return;
       }

@@ -1,13 +1,15 @@
-/* clrt_leaf_alone.h - a leaf's triangles against the ray of one lane of a
- * block, one triangle per SIMD lane: the leaf test of a lane that walks a
+/* clrt_leaf_alone.h - a leaf's primitives against the ray of one lane of a
+ * block, one primitive per SIMD lane: the leaf test of a lane that walks a
  * subtree alone (clrt_bvh.h: ray_closest(), ray_any(), in blocks of lanes
- * over a hierarchy of triangles only). The block's own leaf test
- * (closest_in_leaf()) takes the triangles one at a time against every
- * lane's ray: for one ray, all but one of its SIMD lanes are wasted, and a
- * lone walk is what a block's reflection rays mostly take.
- * The arithmetic is triangle_distance()'s (clrt_flat.h: the same macro,
- * WATERTIGHT_DISTANCE) on the same ray and triangle, the ray's values
- * broadcast and the triangles' gathered: the same distances, bit for bit. The nearest is
+ * over a hierarchy of triangles only, or of spheres only in the robust
+ * variant). The block's own leaf test (closest_in_leaf()) takes the
+ * primitives one at a time against every lane's ray: for one ray, all but
+ * one of its SIMD lanes are wasted, and a lone walk is what a block's
+ * reflection rays mostly take.
+ * The arithmetic is the lanes' test's (clrt_flat.h's WATERTIGHT_DISTANCE,
+ * clrt_sphere.h's CHEAP_ROOTS: the same macros) on the same ray and
+ * primitive, the ray's values broadcast and the primitives' gathered: the
+ * same distances, bit for bit. The nearest is
  * then picked by the rule of the loops over every primitive - the smaller
  * distance, then the lower id - which does not depend on the order in
  * which the triangles are tested. Included by clrt_bvh.h. */
@@ -16,30 +18,48 @@
 
 #if CLRT_LANES > 1 && CLRT_HAS_TRIANGLES && !CLRT_BVH_SPHERES
 #define CLRT_LEAF_ALONE 1
+#define ALONE_TRIANGLES 1
+#elif CLRT_LANES > 1 && !CLRT_HAS_TRIANGLES && CLRT_PRECISION == CLRT_PRECISION_ROBUST
+/* (spheres: robust's plain-float roots; a compensated sphere is tested the
+ * block's way, the others' variants keep the block's leaf test) */
+#define CLRT_LEAF_ALONE 1
+#define ALONE_TRIANGLES 0
+#endif
 
-/* Triangles per test: 8 (a merged leaf's most, kWideLeafMax; larger leaves
- * take several). */
+#ifdef CLRT_LEAF_ALONE
+/* Primitives per step: 8 (a merged leaf's most, kWideLeafMax; larger
+ * leaves take several steps). */
 #define ALONE_WIDTH 8
 typedef float8 alone_real;
 typedef int8 alone_int;
 
-/* One lane's ray, as scalars (its shear: clrt_flat.h's ray_shear). */
+/* One lane's ray as scalars: origin, direction, its shear (clrt_flat.h's
+ * ray_shear), the primitive it starts on, and the lane. */
+typedef struct lone_vec {
+  real x, y, z;
+} lone_vec;
 typedef struct lone_ray {
-  real ox, oy, oz, sx, sy, sz;
+  lone_vec o, d;
+  real sx, sy, sz;
   int kx, ky, kz, self, lane;
 } lone_ray;
 
-CLRT_INLINE lone_ray lone_ray_of(const vec3* O, const ray_shear* s, lint self, int j) {
+CLRT_INLINE lone_ray lone_ray_of(const vec3* O, const vec3* D SHEAR_ARG, lint self, int j) {
   lone_ray r;
-  r.ox = LANE_OF((*O).x, j);
-  r.oy = LANE_OF((*O).y, j);
-  r.oz = LANE_OF((*O).z, j);
-  r.sx = LANE_OF(s->sx, j);
-  r.sy = LANE_OF(s->sy, j);
-  r.sz = LANE_OF(s->sz, j);
-  r.kx = LINT_LANE(s->kx, j);
-  r.ky = LINT_LANE(s->ky, j);
-  r.kz = LINT_LANE(s->kz, j);
+  r.o.x = LANE_OF((*O).x, j);
+  r.o.y = LANE_OF((*O).y, j);
+  r.o.z = LANE_OF((*O).z, j);
+  r.d.x = LANE_OF((*D).x, j);
+  r.d.y = LANE_OF((*D).y, j);
+  r.d.z = LANE_OF((*D).z, j);
+#if ALONE_TRIANGLES
+  r.sx = LANE_OF(shear->sx, j);
+  r.sy = LANE_OF(shear->sy, j);
+  r.sz = LANE_OF(shear->sz, j);
+  r.kx = LINT_LANE(shear->kx, j);
+  r.ky = LINT_LANE(shear->ky, j);
+  r.kz = LINT_LANE(shear->kz, j);
+#endif
   r.self = LINT_LANE(self, j);
   r.lane = j;
   return r;
@@ -61,67 +81,122 @@ CLRT_INLINE int alone_any(alone_int m) {
   return (g.x | g.y) != 0;
 }
 
-/* The distances of ray r to triangles tri[0 .. n) (1 <= n <= ALONE_WIDTH;
- * lane l holds triangle min(l, n - 1)), with their ids (`id`): infinity
- * where it misses, and for its own triangle (id r->self). */
-CLRT_INLINE alone_real alone_distances(const lone_ray* r, __global const clrt_triangle* tri, int n, int id0,
-                                       alone_int* id) {
+#define GATHER(v, c) ((alone_real)(v[0].c, v[1].c, v[2].c, v[3].c, v[4].c, v[5].c, v[6].c, v[7].c))
+
+/* Both distances of ray r to leaf entries [k, k + n) (1 <= n <=
+ * ALONE_WIDTH; lane l holds entry k + min(l, n - 1)), and their ids:
+ * infinity where it misses (a triangle's twice; none for the triangle it
+ * starts on, the self roots for the sphere it starts on). Returns 1, with
+ * nothing set, where the step holds a compensated sphere. */
+CLRT_INLINE int alone_roots(const lone_ray* r, const scene_data* scene, int k, int n, alone_real* t1, alone_real* t2,
+                            alone_int* id) {
+#if ALONE_TRIANGLES
 #pragma OPENCL FP_CONTRACT OFF
   /* each record as three float4s: v0 and material, v1 and index, v2 */
   float4 p[ALONE_WIDTH], q[ALONE_WIDTH], w4[ALONE_WIDTH];
   for (int l = 0; l < ALONE_WIDTH; ++l) {
-    __global const float* f = (__global const float*)&tri[min(l, n - 1)];
+    __global const float* f = (__global const float*)&scene->triangles[k + min(l, n - 1)];
     p[l] = vload4(0, f);
     q[l] = vload4(1, f);
     w4[l] = vload4(2, f);
   }
-#define GATHER(v, c) ((alone_real)(v[0].c, v[1].c, v[2].c, v[3].c, v[4].c, v[5].c, v[6].c, v[7].c))
-  const alone_real Ax = GATHER(p, x) - r->ox, Ay = GATHER(p, y) - r->oy, Az = GATHER(p, z) - r->oz;
-  const alone_real Bx = GATHER(q, x) - r->ox, By = GATHER(q, y) - r->oy, Bz = GATHER(q, z) - r->oz;
-  const alone_real Cx = GATHER(w4, x) - r->ox, Cy = GATHER(w4, y) - r->oy, Cz = GATHER(w4, z) - r->oz;
-  *id = (alone_int)id0 + as_int8(GATHER(q, w));
-#undef GATHER
+  const alone_real Ax = GATHER(p, x) - r->o.x, Ay = GATHER(p, y) - r->o.y, Az = GATHER(p, z) - r->o.z;
+  const alone_real Bx = GATHER(q, x) - r->o.x, By = GATHER(q, y) - r->o.y, Bz = GATHER(q, z) - r->o.z;
+  const alone_real Cx = GATHER(w4, x) - r->o.x, Cy = GATHER(w4, y) - r->o.y, Cz = GATHER(w4, z) - r->o.z;
+  *id = (alone_int)TRIANGLE_ID0(scene->params) + as_int8(GATHER(q, w));
   WATERTIGHT_DISTANCE(alone_real, alone_int, Ax, Ay, Az, Bx, By, Bz, Cx, Cy, Cz, r->kx, r->ky, r->kz, r->sx, r->sy,
                       r->sz, t);
-  return *id == (alone_int)r->self ? (alone_real)REAL_INFINITY : t;
+  *t1 = *id == (alone_int)r->self ? (alone_real)REAL_INFINITY : t;
+  *t2 = *t1;
+#else
+  /* the leaf copies (clrt_leaf_sphere: centre, radius with the compensated
+   * flag in its sign bit) and the entries' sphere indices */
+  float4 c[ALONE_WIDTH];
+  int index[ALONE_WIDTH];
+  for (int l = 0; l < ALONE_WIDTH; ++l) {
+    c[l] = vload4(0, scene->leaf_spheres[k + min(l, n - 1)].center);
+    index[l] = scene->primitives[k + min(l, n - 1)] & CLRT_PRIMITIVE_INDEX_MASK;
+  }
+  const alone_real w = GATHER(c, w);
+#if defined(CLRT_COMPENSATED_SPHERES)
+  if (CLRT_COMPENSATED_SPHERES) return 1;
+#else
+  if (alone_any(signbit(w))) return 1;
+#endif
+  *id = vload8(0, index);
+  alone_real b;
+  CHEAP_ROOTS(alone_real, r->o, r->d, GATHER(c, x), GATHER(c, y), GATHER(c, z), fabs(w), &b, t1, t2);
+#if CLRT_SELF_ROOTS
+  /* (float_sphere_roots()'s self roots) */
+  const real a = vdot(r->d, r->d);
+  const alone_int self = *id == (alone_int)r->self;
+  *t1 = self ? (alone_real)0 : *t1;
+  *t2 = self ? REAL_DIVIDE(2 * b, a) : *t2;
+#endif
+#endif
+  return 0;
 }
+#undef GATHER
 
 /* Lane r->lane's closest hit among leaf entries [first, first + count) in
- * (tmin, tmax), below its `closest` so far (ties to the lower id). */
-CLRT_INLINE void closest_in_leaf_alone(int first, int count, const lone_ray* r, real tmin, real tmax,
-                                       const scene_data* scene, lreal* closest, lint* best, lint* tests) {
-  const int id0 = TRIANGLE_ID0(scene->params);
+ * (tmin, tmax), below its `closest` so far (ties to the lower id); a step
+ * that holds a compensated sphere goes the block's way (closest_in_leaf(),
+ * every lane). */
+CLRT_INLINE void closest_in_leaf_alone(int first, int count, const lone_ray* r, const vec3* O, const vec3* D SHEAR_ARG,
+                                       real tmin, real tmax, lint self, const scene_data* scene, lreal* closest,
+                                       lint* best, lint* tests) {
+  const lint mine = LANE_IOTA == (lint)r->lane;
   real nearest_t = LANE_OF(*closest, r->lane);
   int nearest = LINT_LANE(*best, r->lane);
   for (int k = first; k < first + count; k += ALONE_WIDTH) {
+    const int n = min(ALONE_WIDTH, first + count - k);
+    alone_real t1, t2;
     alone_int id;
-    const alone_real t = alone_distances(r, &scene->triangles[k], min(ALONE_WIDTH, first + count - k), id0, &id);
-    const alone_int in = ((alone_real)tmin < t) & (t < (alone_real)tmax);
-    if (!alone_any(in)) continue;
+    if (alone_roots(r, scene, k, n, &t1, &t2, &id)) {
+      *closest = mine ? (lreal)nearest_t : *closest;
+      *best = mine ? (lint)nearest : *best;
+      closest_in_leaf(k, n, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, closest, best, tests);
+      nearest_t = LANE_OF(*closest, r->lane);
+      nearest = LINT_LANE(*best, r->lane);
+      continue;
+    }
+    *tests += mine ? (lint)n : (lint)0;
+    const alone_int in1 = ((alone_real)tmin < t1) & (t1 < (alone_real)tmax);
+    const alone_int in2 = ((alone_real)tmin < t2) & (t2 < (alone_real)tmax);
+    if (!alone_any(in1 | in2)) continue;
     /* the least distance, then the least id at it */
-    const real m = alone_min_real(in ? t : (alone_real)INFINITY);
-    const int i = alone_min_int((in & (t == (alone_real)m)) ? id : (alone_int)INT_MAX);
+    const real m =
+        BMIN(alone_min_real(in1 ? t1 : (alone_real)INFINITY), alone_min_real(in2 ? t2 : (alone_real)INFINITY));
+    const int i =
+        alone_min_int(((in1 & (t1 == (alone_real)m)) | (in2 & (t2 == (alone_real)m))) ? id : (alone_int)INT_MAX);
     if (m < nearest_t || (m == nearest_t && i < nearest)) {
       nearest_t = m;
       nearest = i;
     }
   }
-  const lint mine = LANE_IOTA == (lint)r->lane;
   *closest = mine ? (lreal)nearest_t : *closest;
   *best = mine ? (lint)nearest : *best;
-  *tests += mine ? (lint)count : (lint)0;
 }
 
-/* Whether lane r->lane's ray meets a triangle of leaf entries [first,
- * first + count) in (tmin, tmax). */
-CLRT_INLINE int any_in_leaf_alone(int first, int count, const lone_ray* r, real tmin, real tmax,
-                                  const scene_data* scene, lint* tests) {
-  const int id0 = TRIANGLE_ID0(scene->params);
-  *tests += LANE_IOTA == (lint)r->lane ? (lint)count : (lint)0;
+/* Whether lane r->lane's ray meets a primitive of leaf entries [first,
+ * first + count) in (tmin, tmax) (a compensated sphere's step: the block's
+ * way, any_in_leaf(), every lane). */
+CLRT_INLINE int any_in_leaf_alone(int first, int count, const lone_ray* r, const vec3* O, const vec3* D SHEAR_ARG,
+                                  real tmin, real tmax, lint self, const scene_data* scene, lint* blocked,
+                                  lint* tests) {
   for (int k = first; k < first + count; k += ALONE_WIDTH) {
+    const int n = min(ALONE_WIDTH, first + count - k);
+    alone_real t1, t2;
     alone_int id;
-    const alone_real t = alone_distances(r, &scene->triangles[k], min(ALONE_WIDTH, first + count - k), id0, &id);
-    if (alone_any(((alone_real)tmin < t) & (t < (alone_real)tmax))) return 1;
+    if (alone_roots(r, scene, k, n, &t1, &t2, &id)) {
+      *blocked |= any_in_leaf(k, n, O, D SHEAR_PASS_PTR, tmin, tmax, self, scene, tests);
+      if (LINT_LANE(*blocked, r->lane)) return 1;
+      continue;
+    }
+    *tests += LANE_IOTA == (lint)r->lane ? (lint)n : (lint)0;
+    if (alone_any(((alone_real)tmin < t1) & (t1 < (alone_real)tmax) |
+                  ((alone_real)tmin < t2) & (t2 < (alone_real)tmax)))
+      return 1;
   }
   return 0;
 }

@@ -50,6 +50,23 @@ CLRT_INLINE void compensated_roots(const vec3* Op, const vec3* Dp, __global cons
   stable_roots(&f, c, Dp, r, b, t1, t2);
 }
 
+/* cheap_roots()'s arithmetic on values of type T, from O and D (anything
+ * with members x, y, z: vectors of the lanes' rays, or one ray's scalars)
+ * and the sphere (C = (cx, cy, cz), r: scalars, or a sphere per lane):
+ * writes *t1, *t2 and *b_out. A macro, so that the lanes' test of one
+ * sphere and one ray's test of a sphere per lane (clrt_leaf_alone.h) round
+ * alike: the same expressions, so the same contractions. */
+#define CHEAP_ROOTS(T, O, D, cx, cy, cz, r, b_out, t1, t2)                                                            \
+  const T g_x_ = (cx) - (O).x, g_y_ = (cy) - (O).y, g_z_ = (cz) - (O).z;                                              \
+  const T a_ = vdot(D, D);                                                                                            \
+  const T b_ = g_x_ * (D).x + g_y_ * (D).y + g_z_ * (D).z;                                                            \
+  const T x_x_ = g_y_ * (D).z - g_z_ * (D).y, x_y_ = g_z_ * (D).x - g_x_ * (D).z, x_z_ = g_x_ * (D).y - g_y_ * (D).x; \
+  const T disc_ = a_ * ((r) * (r)) - (x_x_ * x_x_ + x_y_ * x_y_ + x_z_ * x_z_);                                       \
+  const T sq_ = REAL_SQRT(disc_);                                                                                     \
+  *(t1) = disc_ < 0 ? (T)REAL_INFINITY : REAL_DIVIDE(b_ - sq_, a_);                                                   \
+  *(t2) = disc_ < 0 ? (T)REAL_INFINITY : REAL_DIVIDE(b_ + sq_, a_);                                                   \
+  *(b_out) = b_
+
 /* The roots in plain float, for the spheres the host leaves unflagged:
  * g = C - O, b = g.D and the discriminant b^2 - a c in Lagrange's form
  * a r^2 - |g x D|^2, roots (b -+ sqrt) / a. It needs no c, no division but
@@ -61,18 +78,10 @@ CLRT_INLINE void compensated_roots(const vec3* Op, const vec3* Dp, __global cons
  * starts near the surface gets its near root to ~u r / |D|, far below
  * epsilon for the spheres the host leaves to this path
  * (host/render/conditioning.hpp). */
-CLRT_INLINE void cheap_roots(const vec3* Op, const vec3* Dp, real cx, real cy, real cz, real r, lreal* b_out,
-                             lreal* t1, lreal* t2) {
+CLRT_INLINE void cheap_roots(const vec3* Op, const vec3* Dp, real cx, real cy, real cz, real r, lreal* b_out, lreal* t1,
+                             lreal* t2) {
   const vec3 O = *Op, D = *Dp;
-  vec3 g = v3(cx - O.x, cy - O.y, cz - O.z);
-  lreal a = vdot(D, D);
-  lreal b = vdot(g, D);
-  vec3 x = v3(g.y * D.z - g.z * D.y, g.z * D.x - g.x * D.z, g.x * D.y - g.y * D.x);
-  lreal disc = a * (r * r) - vdot(x, x);
-  lreal sq = REAL_SQRT(disc);
-  *t1 = disc < 0 ? (lreal)REAL_INFINITY : REAL_DIVIDE(b - sq, a);
-  *t2 = disc < 0 ? (lreal)REAL_INFINITY : REAL_DIVIDE(b + sq, a);
-  *b_out = b;
+  CHEAP_ROOTS(lreal, O, D, cx, cy, cz, r, b_out, t1, t2);
 }
 
 /* Whether sphere `index` (at s) takes the compensated path: a constant in
