@@ -27,11 +27,12 @@
 #endif
 
 #ifdef CLRT_LEAF_ALONE
-/* Primitives per step: 8 (a merged leaf's most, kWideLeafMax; larger
- * leaves take several steps). */
-#define ALONE_WIDTH 8
-typedef float8 alone_real;
-typedef int8 alone_int;
+/* Primitives per step: 4, larger leaves take several steps (8 to a step,
+ * a merged leaf's most, gathered twice the records for the small leaves
+ * most walks meet: 2-7% slower, docs/results/wide-hierarchy.md). */
+#define ALONE_WIDTH 4
+typedef float4 alone_real;
+typedef int4 alone_int;
 
 /* One lane's ray as scalars: origin, direction, its shear (clrt_flat.h's
  * ray_shear), the primitive it starts on, and the lane. */
@@ -65,23 +66,20 @@ CLRT_INLINE lone_ray lone_ray_of(const vec3* O, const vec3* D SHEAR_ARG, lint se
   return r;
 }
 
-CLRT_INLINE real alone_min_real(alone_real x) {
-  const float4 h = BMIN(x.lo, x.hi);
+CLRT_INLINE real alone_min_real(alone_real h) {
   const float2 g = BMIN(h.lo, h.hi);
   return BMIN(g.x, g.y);
 }
-CLRT_INLINE int alone_min_int(alone_int x) {
-  const int4 h = min(x.lo, x.hi);
+CLRT_INLINE int alone_min_int(alone_int h) {
   const int2 g = min(h.lo, h.hi);
   return min(g.x, g.y);
 }
-CLRT_INLINE int alone_any(alone_int m) {
-  const int4 h = m.lo | m.hi;
+CLRT_INLINE int alone_any(alone_int h) {
   const int2 g = h.lo | h.hi;
   return (g.x | g.y) != 0;
 }
 
-#define GATHER(v, c) ((alone_real)(v[0].c, v[1].c, v[2].c, v[3].c, v[4].c, v[5].c, v[6].c, v[7].c))
+#define GATHER(v, c) ((alone_real)(v[0].c, v[1].c, v[2].c, v[3].c))
 
 /* Both distances of ray r to leaf entries [k, k + n) (1 <= n <=
  * ALONE_WIDTH; lane l holds entry k + min(l, n - 1)), and their ids:
@@ -103,7 +101,7 @@ CLRT_INLINE int alone_roots(const lone_ray* r, const scene_data* scene, int k, i
   const alone_real Ax = GATHER(p, x) - r->o.x, Ay = GATHER(p, y) - r->o.y, Az = GATHER(p, z) - r->o.z;
   const alone_real Bx = GATHER(q, x) - r->o.x, By = GATHER(q, y) - r->o.y, Bz = GATHER(q, z) - r->o.z;
   const alone_real Cx = GATHER(w4, x) - r->o.x, Cy = GATHER(w4, y) - r->o.y, Cz = GATHER(w4, z) - r->o.z;
-  *id = (alone_int)TRIANGLE_ID0(scene->params) + as_int8(GATHER(q, w));
+  *id = (alone_int)TRIANGLE_ID0(scene->params) + as_int4(GATHER(q, w));
   WATERTIGHT_DISTANCE(alone_real, alone_int, Ax, Ay, Az, Bx, By, Bz, Cx, Cy, Cz, r->kx, r->ky, r->kz, r->sx, r->sy,
                       r->sz, t);
   *t1 = *id == (alone_int)r->self ? (alone_real)REAL_INFINITY : t;
@@ -123,7 +121,7 @@ CLRT_INLINE int alone_roots(const lone_ray* r, const scene_data* scene, int k, i
 #else
   if (alone_any(signbit(w))) return 1;
 #endif
-  *id = vload8(0, index);
+  *id = vload4(0, index);
   alone_real b;
   CHEAP_ROOTS(alone_real, r->o, r->d, GATHER(c, x), GATHER(c, y), GATHER(c, z), fabs(w), &b, t1, t2);
 #if CLRT_SELF_ROOTS
