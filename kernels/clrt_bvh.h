@@ -23,12 +23,12 @@
  * lane needs, for the lanes that met it; below a node that only one or two
  * lanes met, each of them walks alone, and tests a leaf's primitives side
  * by side, one per SIMD lane (clrt_leaf_alone.h). Either way the hit
- * children, leaves and inner nodes alike, are pushed nearest last, each with its entry
- * distance (the smallest over the lanes that meet it), so the nearest is
- * visited first and a popped child beyond the closest hit is skipped. Shadow
- * rays take any hit and end the walk at the first; they too go nearest
- * first, where the usual blocker is (unordered, they tested 25% more
- * spheres: docs/results/wide-hierarchy.md). The walk is iterative;
+ * children, leaves and inner nodes alike, are pushed nearest last, each
+ * with its entry distance (the smallest over the lanes that meet it), so
+ * the nearest is visited first and a popped child beyond the closest hit
+ * is skipped. Shadow rays take any hit and end the walk at the first; they
+ * too go nearest first, where the usual blocker is (unordered, they tested
+ * 25% more spheres: docs/results/wide-hierarchy.md). The walk is iterative;
  * CLRT_BVH_STACK entries always suffice (clrt_layout.h). */
 #ifndef CLRT_BVH_H
 #define CLRT_BVH_H
@@ -301,8 +301,10 @@ CLRT_INLINE void prefetch_child(const scene_data* scene, __global const clrt_wid
 #else
 #define prefetch_child(scene, node, slot)
 #endif
-#define PREFETCH_NEXT(top, base) \
-  if ((top) > (base)) prefetch_child(scene, &nodes[stack->node[(top)-1]], KEY_SLOT(stack->enter[(top)-1]))
+#define PREFETCH_NEXT(top, base)                                                                              \
+  do {                                                                                                        \
+    if ((top) > (base)) prefetch_child(scene, &nodes[stack->node[(top)-1]], KEY_SLOT(stack->enter[(top)-1])); \
+  } while (0)
 
 /* The primitive entries of leaf child [first, first + count) against the
  * lanes' rays: the nearest root in (tmin, tmax) below `closest`, ties to

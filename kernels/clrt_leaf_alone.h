@@ -9,10 +9,10 @@
  * The arithmetic is the lanes' test's (clrt_flat.h's WATERTIGHT_DISTANCE,
  * clrt_sphere.h's CHEAP_ROOTS: the same macros) on the same ray and
  * primitive, the ray's values broadcast and the primitives' gathered: the
- * same distances, bit for bit. The nearest is
- * then picked by the rule of the loops over every primitive - the smaller
- * distance, then the lower id - which does not depend on the order in
- * which the triangles are tested. Included by clrt_bvh.h. */
+ * same distances, bit for bit. The nearest is then picked by the rule of
+ * the loops over every primitive - the smaller distance, then the lower id
+ * - which does not depend on the order of the tests. Included by
+ * clrt_bvh.h. */
 #ifndef CLRT_LEAF_ALONE_H
 #define CLRT_LEAF_ALONE_H
 
@@ -162,9 +162,10 @@ CLRT_INLINE void closest_in_leaf_alone(int first, int count, const lone_ray* r, 
     const alone_int in1 = ((alone_real)tmin < t1) & (t1 < (alone_real)tmax);
     const alone_int in2 = ((alone_real)tmin < t2) & (t2 < (alone_real)tmax);
     if (!alone_any(in1 | in2)) continue;
-    /* the least distance, then the least id at it */
-    const real m =
-        BMIN(alone_min_real(in1 ? t1 : (alone_real)INFINITY), alone_min_real(in2 ? t2 : (alone_real)INFINITY));
+    /* the least distance, then the least id at it (the lanes outside the
+     * interval, below tmax <= REAL_INFINITY, take no part) */
+    const real m = BMIN(alone_min_real(in1 ? t1 : (alone_real)REAL_INFINITY),
+                        alone_min_real(in2 ? t2 : (alone_real)REAL_INFINITY));
     const int i =
         alone_min_int(((in1 & (t1 == (alone_real)m)) | (in2 & (t2 == (alone_real)m))) ? id : (alone_int)INT_MAX);
     if (m < nearest_t || (m == nearest_t && i < nearest)) {
@@ -192,8 +193,8 @@ CLRT_INLINE int any_in_leaf_alone(int first, int count, const lone_ray* r, const
       continue;
     }
     *tests += LANE_IOTA == (lint)r->lane ? (lint)n : (lint)0;
-    if (alone_any(((alone_real)tmin < t1) & (t1 < (alone_real)tmax) |
-                  ((alone_real)tmin < t2) & (t2 < (alone_real)tmax)))
+    if (alone_any((((alone_real)tmin < t1) & (t1 < (alone_real)tmax)) |
+                  (((alone_real)tmin < t2) & (t2 < (alone_real)tmax))))
       return 1;
   }
   return 0;
