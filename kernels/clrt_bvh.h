@@ -274,7 +274,7 @@ CLRT_INLINE int entry_roots(int k, const vec3* O, const vec3* D SHEAR_ARG, lint 
  * instruction. Only where clang compiles the kernel for a CPU (PoCL), and
  * not with -DCLRT_NO_PREFETCH (for A/B runs through --cl-options). Block
  * walks ask for each child they push (block_push()); one ray's walk asks,
- * on each visit, for the entry below the one it pops (PREFETCH_NEXT: the
+ * on each visit, for the entry below the one it pops (prefetch_next(): the
  * next it visits when this one is a leaf, and a sibling it comes back to):
  * 1.06x on the million-triangle mesh. Asking for every child it pushes
  * made it 6-8% slower on 10^4-10^6 spheres, for the next two 5%
@@ -301,10 +301,6 @@ CLRT_INLINE void prefetch_child(const scene_data* scene, __global const clrt_wid
 #else
 #define prefetch_child(scene, node, slot)
 #endif
-#define PREFETCH_NEXT(top, base)                                                                              \
-  do {                                                                                                        \
-    if ((top) > (base)) prefetch_child(scene, &nodes[stack->node[(top)-1]], KEY_SLOT(stack->enter[(top)-1])); \
-  } while (0)
 
 /* The primitive entries of leaf child [first, first + count) against the
  * lanes' rays: the nearest root in (tmin, tmax) below `closest`, ties to
@@ -339,6 +335,11 @@ CLRT_INLINE lint any_in_leaf(int first, int count, const vec3* O, const vec3* D 
 
 #include "clrt_leaf_alone.h"
 
+/* Asks for the child of the stack entry below `top` (if above `base`). */
+CLRT_INLINE void prefetch_next(const scene_data* scene, const walk_stack* stack, int top, int base) {
+  if (top > base) prefetch_child(scene, &scene->nodes[stack->node[top - 1]], KEY_SLOT(stack->enter[top - 1]));
+}
+
 /* Lane j's closest-hit walk of the subtree under node `root` (LANES 1:
  * the one ray's whole walk), on the stack above `base`. A leaf's
  * primitives are tested against every lane's ray (in a block, it costs the
@@ -359,7 +360,7 @@ CLRT_INLINE void ray_closest(int root, int j, const slab_ray* r, const vec3* O, 
     while (top > base) {
       --top;
       if (stack->enter[top] > LANE_OF(*closest, j)) continue;
-      PREFETCH_NEXT(top, base);
+      prefetch_next(scene, stack, top, base);
       int count;
       const int child = entry_child(nodes, stack, top, &count);
       if (count < 0) {
@@ -391,7 +392,7 @@ CLRT_INLINE void ray_any(int root, int j, const slab_ray* r, const vec3* O, cons
     index = -1;
     while (top > base) {
       --top;
-      PREFETCH_NEXT(top, base);
+      prefetch_next(scene, stack, top, base);
       int count;
       const int child = entry_child(nodes, stack, top, &count);
       if (count < 0) {

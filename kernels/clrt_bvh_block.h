@@ -18,8 +18,7 @@ CLRT_INLINE real lane_min_real(lreal x) {
 #else
   const float4 h4 = x;
 #endif
-  const float2 h2 = BMIN(h4.lo, h4.hi);
-  return BMIN(h2.x, h2.y);
+  return lane_min4_real(h4);
 }
 
 /* A lane mask as bits (lane i, bit i) and back. */

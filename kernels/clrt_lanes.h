@@ -108,6 +108,11 @@ inline int lane_min4(int4 x) {
   const int2 m = min(x.lo, x.hi);
   return min(m.x, m.y);
 }
+/* The smallest of four floats, by selects (no NaN where it is used). */
+inline float lane_min4_real(float4 x) {
+  const float2 m = x.lo < x.hi ? x.lo : x.hi;
+  return m.x < m.y ? m.x : m.y;
+}
 #endif
 #define MASK_TRUE ((lint)(CLRT_LANES == 1 ? 1 : -1))
 

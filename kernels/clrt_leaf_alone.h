@@ -66,18 +66,9 @@ CLRT_INLINE lone_ray lone_ray_of(const vec3* O, const vec3* D SHEAR_ARG, lint se
   return r;
 }
 
-CLRT_INLINE real alone_min_real(alone_real h) {
-  const float2 g = BMIN(h.lo, h.hi);
-  return BMIN(g.x, g.y);
-}
-CLRT_INLINE int alone_min_int(alone_int h) {
-  const int2 g = min(h.lo, h.hi);
-  return min(g.x, g.y);
-}
-CLRT_INLINE int alone_any(alone_int h) {
-  const int2 g = h.lo | h.hi;
-  return (g.x | g.y) != 0;
-}
+/* Lanes of t inside (tmin, tmax). */
+#define ALONE_ANY(m) (lane_or4(m) != 0)
+#define ALONE_INSIDE(t, tmin, tmax) (((alone_real)(tmin) < (t)) & ((t) < (alone_real)(tmax)))
 
 #define GATHER(v, c) ((alone_real)(v[0].c, v[1].c, v[2].c, v[3].c))
 
@@ -119,17 +110,14 @@ CLRT_INLINE int alone_roots(const lone_ray* r, const scene_data* scene, int k, i
 #if defined(CLRT_COMPENSATED_SPHERES)
   if (CLRT_COMPENSATED_SPHERES) return 1;
 #else
-  if (alone_any(signbit(w))) return 1;
+  if (ALONE_ANY(signbit(w))) return 1;
 #endif
   *id = vload4(0, index);
   alone_real b;
   CHEAP_ROOTS(alone_real, r->o, r->d, GATHER(c, x), GATHER(c, y), GATHER(c, z), fabs(w), &b, t1, t2);
 #if CLRT_SELF_ROOTS
   /* (float_sphere_roots()'s self roots) */
-  const real a = vdot(r->d, r->d);
-  const alone_int self = *id == (alone_int)r->self;
-  *t1 = self ? (alone_real)0 : *t1;
-  *t2 = self ? REAL_DIVIDE(2 * b, a) : *t2;
+  SELF_ROOTS(alone_real, *id == (alone_int)r->self, b, vdot(r->d, r->d), *t1, *t2);
 #endif
 #endif
   return 0;
@@ -159,15 +147,14 @@ CLRT_INLINE void closest_in_leaf_alone(int first, int count, const lone_ray* r, 
       continue;
     }
     *tests += mine ? (lint)n : (lint)0;
-    const alone_int in1 = ((alone_real)tmin < t1) & (t1 < (alone_real)tmax);
-    const alone_int in2 = ((alone_real)tmin < t2) & (t2 < (alone_real)tmax);
-    if (!alone_any(in1 | in2)) continue;
+    const alone_int in1 = ALONE_INSIDE(t1, tmin, tmax);
+    const alone_int in2 = ALONE_INSIDE(t2, tmin, tmax);
+    if (!ALONE_ANY(in1 | in2)) continue;
     /* the least distance, then the least id at it (the lanes outside the
      * interval, below tmax <= REAL_INFINITY, take no part) */
-    const real m = BMIN(alone_min_real(in1 ? t1 : (alone_real)REAL_INFINITY),
-                        alone_min_real(in2 ? t2 : (alone_real)REAL_INFINITY));
-    const int i =
-        alone_min_int(((in1 & (t1 == (alone_real)m)) | (in2 & (t2 == (alone_real)m))) ? id : (alone_int)INT_MAX);
+    const real m = BMIN(lane_min4_real(in1 ? t1 : (alone_real)REAL_INFINITY),
+                        lane_min4_real(in2 ? t2 : (alone_real)REAL_INFINITY));
+    const int i = lane_min4(((in1 & (t1 == (alone_real)m)) | (in2 & (t2 == (alone_real)m))) ? id : (alone_int)INT_MAX);
     if (m < nearest_t || (m == nearest_t && i < nearest)) {
       nearest_t = m;
       nearest = i;
@@ -193,9 +180,7 @@ CLRT_INLINE int any_in_leaf_alone(int first, int count, const lone_ray* r, const
       continue;
     }
     *tests += LANE_IOTA == (lint)r->lane ? (lint)n : (lint)0;
-    if (alone_any((((alone_real)tmin < t1) & (t1 < (alone_real)tmax)) |
-                  (((alone_real)tmin < t2) & (t2 < (alone_real)tmax))))
-      return 1;
+    if (ALONE_ANY(ALONE_INSIDE(t1, tmin, tmax) | ALONE_INSIDE(t2, tmin, tmax))) return 1;
   }
   return 0;
 }

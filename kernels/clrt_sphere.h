@@ -107,6 +107,15 @@ __constant int clrt_compensated_flags[CLRT_N_SPHERES] = {CLRT_COMPENSATED_FLAGS}
 #define LEAF_COMPENSATED(w) 0 /* (no compensated path) */
 #endif
 
+/* A ray that starts on the sphere (where `self` is set): its roots are 0
+ * and 2b/a, b = (C - O).D and a = D.D, exactly, not what the rounding of
+ * its origin would make them. One place for the lanes' test
+ * (float_sphere_roots()) and one ray's test of a sphere per lane
+ * (clrt_leaf_alone.h). */
+#define SELF_ROOTS(T, self, b, a, t1, t2) \
+  (t1) = (self) ? (T)0 : (t1);            \
+  (t2) = (self) ? REAL_DIVIDE(2 * (b), (a)) : (t2)
+
 #if CLRT_PRECISION != CLRT_PRECISION_NAIVE && CLRT_PRECISION != CLRT_PRECISION_FP64
 /* Both roots of |O + tD - C|^2 = r^2 in a float variant, or (inf, inf), for
  * a sphere given by value (C = (cx, cy, cz) and r, the hi parts: the scene's
@@ -133,9 +142,7 @@ CLRT_INLINE void float_sphere_roots(const vec3* Op, const vec3* Dp, real cx, rea
 #endif
 #if CLRT_SELF_ROOTS
   const vec3 D = *Dp;
-  lreal a = vdot(D, D);
-  u1 = self ? (lreal)0 : u1;
-  u2 = self ? REAL_DIVIDE(2 * b, a) : u2;
+  SELF_ROOTS(lreal, self, b, vdot(D, D), u1, u2);
 #endif
   *t1 = u1;
   *t2 = u2;
