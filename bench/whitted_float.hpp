@@ -197,14 +197,17 @@ float lighting(const W& w, V P, V N, V Vv, float spec, float eps) {
     }
     V L = l.type == clrt::LightType::Point ? l.vec - P : l.vec;
     float tmax = l.type == clrt::LightType::Point ? 1.f : kInf;
+    const float nl = dot(N, L);
+    const V R = (2 * nl) * N - L;
+    const float rv = dot(R, Vv);
+    const bool diffuse = nl > 0, shiny = spec != -1 && rv > 0;
+    // A light that adds nothing here, blocked or not, needs no shadow ray:
+    // the rule the OpenCL kernel follows (clrt_shade.h), so that both trace
+    // the same rays.
+    if (!diffuse && !shiny) continue;
     if (blocked(w, P, L, eps, tmax)) continue;
-    float nl = dot(N, L);
-    if (nl > 0) i += l.intensity * nl / (ln * length(L));
-    if (spec != -1) {
-      V R = (2 * dot(N, L)) * N - L;
-      float rv = dot(R, Vv);
-      if (rv > 0) i += l.intensity * std::pow(rv / (length(R) * lv), spec);
-    }
+    if (diffuse) i += l.intensity * nl / (ln * length(L));
+    if (shiny) i += l.intensity * std::pow(rv / (length(R) * lv), spec);
   }
   return i;
 }

@@ -214,25 +214,38 @@ CLRT_INLINE lreal compute_lighting(const vec3* point, const vec3* normal, const 
     tmin = epsilon * (real)light->t_min_scale;
     tmax = REAL_INFINITY;
 #endif
-    COUNT_IN_LANES(counts->shadow, alive, 1);
-    lint tests = 0;
-    const lint blocked =
-        any_intersection(&Pt, &L, tmin, tmax, hit, alive, scene, &tests);
-    COUNT_IN_LANES(counts->sphere_tests, alive, tests);
-    if (classify && light_index < 32) *shadow_mask |= (blocked & alive) ? (lint)(int)(1u << light_index) : (lint)0;
-    const lint lit = alive & !blocked;
+    /* A light adds its diffuse term where N.L > 0 and its specular term
+     * where R.V > 0; where neither holds it adds nothing, blocked or not, so
+     * no shadow ray is traced there (the same image as the book's order,
+     * which tests the shadow first), unless the lane's blocked lights are
+     * stored (classes: subsampling's and --classes' shadow masks). */
     const lreal n_dot_l = vdot(N, L);
+#if CLRT_HAS_SPECULAR
+    const vec3 R = reflect_ray(L, N);
+    const lreal r_dot_v = vdot(R, V);
+    const lint toward_eye = (specular != -1) & (r_dot_v > 0);
+    const lint adds = (n_dot_l > 0) | toward_eye;
+#else
+    const lint adds = n_dot_l > 0;
+#endif
+#if defined(CLRT_OUT_CLASSES) || CLRT_SUBSAMPLE
+    const lint traced = classify ? alive : alive & adds;
+#else
+    const lint traced = alive & adds;
+#endif
+    COUNT_IN_LANES(counts->shadow, traced, 1);
+    lint tests = 0;
+    const lint blocked = ANY(traced) ? any_intersection(&Pt, &L, tmin, tmax, hit, traced, scene, &tests) : (lint)0;
+    COUNT_IN_LANES(counts->sphere_tests, traced, tests);
+    if (classify && light_index < 32) *shadow_mask |= (blocked & alive) ? (lint)(int)(1u << light_index) : (lint)0;
+    const lint lit = traced & !blocked;
     intensity =
         (lit & (n_dot_l > 0)) ? intensity + light_intensity * REAL_DIVIDE(n_dot_l, length_n * vlen(L)) : intensity;
 #if CLRT_HAS_SPECULAR
-    const lint shiny = lit & (specular != -1);
+    const lint shiny = lit & toward_eye;
     if (ANY(shiny)) {
-      const vec3 R = reflect_ray(L, N);
-      const lreal r_dot_v = vdot(R, V);
-      const lint toward_eye = shiny & (r_dot_v > 0);
-      intensity = toward_eye
-                      ? intensity + light_intensity * REAL_POW(REAL_DIVIDE(r_dot_v, vlen(R) * length_v), specular)
-                      : intensity;
+      intensity = shiny ? intensity + light_intensity * REAL_POW(REAL_DIVIDE(r_dot_v, vlen(R) * length_v), specular)
+                        : intensity;
     }
 #endif
 #endif
