@@ -12,18 +12,38 @@
 #include "render/lane_choice.hpp"
 #include "render/scene_buffers.hpp"
 #include "util/error.hpp"
+#include "util/huge_pages.hpp"
 #include "util/log.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
 namespace {
 
+// A read-only scene buffer of `bytes`. On a CPU device that shares the
+// host's memory (PoCL, llvmpipe), one of 8 MiB or more asks the kernel for
+// 2 MiB pages before anything is written to it: a walk of a large scene
+// reads nodes and primitives all over hundreds of MiB, and with 4 KiB pages
+// nearly every read also misses the TLB (Embree asks the same for its
+// hierarchy). The buffer is mapped, its storage advised, and unmapped; where
+// the mapped pointer is not the device's storage the hint changes nothing.
+// Measured: docs/results/wide-hierarchy.md, "Huge pages".
+cl::Buffer scene_buffer(const cl::Context& ctx, const cl::CommandQueue& q, size_t bytes, bool huge_pages) {
+  constexpr size_t kHugePage = size_t(2) << 20;
+  if (!huge_pages || bytes < 4 * kHugePage) return cl::Buffer(ctx, CL_MEM_READ_ONLY, bytes);
+  cl::Buffer b(ctx, CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR, bytes);
+  void* p = q.enqueueMapBuffer(b, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, bytes);
+  advise_huge_pages(p, bytes);
+  q.enqueueUnmapMemObject(b, p);
+  q.finish();
+  return b;
+}
+
 template <class T>
-cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::vector<T>& v) {
+cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::vector<T>& v, bool huge_pages = false) {
   // Zero-sized buffers are invalid in OpenCL: keep at least one element.
   const T stand_in{};
   const size_t bytes = std::max<size_t>(1, v.size()) * sizeof(T);
-  cl::Buffer b(ctx, CL_MEM_READ_ONLY, bytes);
+  cl::Buffer b = scene_buffer(ctx, q, bytes, huge_pages);
   q.enqueueWriteBuffer(b, CL_TRUE, 0, bytes, v.empty() ? &stand_in : v.data());
   return b;
 }
@@ -36,6 +56,7 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
   if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);  // until prepare() chooses
   config_.loop_limit_probe = config_.loop_limit_probe || ends_long_loops(device_);
   map_results_ = map_results && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
+  huge_pages_ = is_cpu_type(device_.type) && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
   context_ = cl::Context(device_.device);
   queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
   if (!map_results_) transfer_queue_ = cl::CommandQueue(context_, device_.device);
@@ -69,8 +90,9 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   // their lo parts only for the variant that reads them (clrt_layout.h)
   const size_t triangle_count = std::max<size_t>(1, scene.triangles.size());
   const bool with_lo = CLRT_READS_TRIANGLE_LO(kernel_code(config_.precision));
-  triangles_ = cl::Buffer(context_, CL_MEM_READ_ONLY, triangle_count * sizeof(clrt_triangle));
-  triangles_lo_ = cl::Buffer(context_, CL_MEM_READ_ONLY, (with_lo ? triangle_count : 1) * sizeof(clrt_triangle_lo));
+  const bool huge = huge_pages_;
+  triangles_ = scene_buffer(context_, queue_, triangle_count * sizeof(clrt_triangle), huge);
+  triangles_lo_ = scene_buffer(context_, queue_, (with_lo ? triangle_count : 1) * sizeof(clrt_triangle_lo), huge);
   size_t triangles_written = 0;
   const TriangleSink to_device = [&](const clrt_triangle* triangles, const clrt_triangle_lo* lo, size_t count) {
     queue_.enqueueWriteBuffer(triangles_, CL_TRUE, triangles_written * sizeof(clrt_triangle),
@@ -86,17 +108,17 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   triangle_slots_ = upload(context_, queue_, order ? triangle_slots(*bvh) : std::vector<clrt_i32>{});
   SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling, to_device, order);
   params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
-  spheres_ = upload(context_, queue_, data.spheres);
+  spheres_ = upload(context_, queue_, data.spheres, huge);
   lights_ = upload(context_, queue_, data.lights);
   if (walks && !bvh) throw std::logic_error("BVH build without its hierarchy");
   // (one-element stand-ins when the kernel does not walk a hierarchy; both
   // branches lvalues, so the hierarchy is uploaded without a copy)
   const std::vector<clrt_wide_node> no_nodes;
   const std::vector<clrt_i32> no_primitives;
-  nodes_ = upload(context_, queue_, bvh ? bvh->wide : no_nodes);
-  primitives_ = upload(context_, queue_, bvh ? bvh->primitives : no_primitives);
-  leaf_spheres_ = upload(context_, queue_,
-                         bvh ? pack_leaf_spheres(bvh->primitives, data.spheres) : std::vector<clrt_leaf_sphere>{});
+  nodes_ = upload(context_, queue_, bvh ? bvh->wide : no_nodes, huge);
+  primitives_ = upload(context_, queue_, bvh ? bvh->primitives : no_primitives, huge);
+  leaf_spheres_ = upload(
+      context_, queue_, bvh ? pack_leaf_spheres(bvh->primitives, data.spheres) : std::vector<clrt_leaf_sphere>{}, huge);
   planes_ = upload(context_, queue_, data.planes);
   materials_ = upload(context_, queue_, data.materials);
   timings_.upload_ms = ms_since(t0);

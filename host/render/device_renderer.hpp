@@ -181,6 +181,7 @@ class DeviceRenderer {
   cl::Buffer params_, spheres_, lights_, nodes_, primitives_, leaf_spheres_, planes_, triangles_, triangles_lo_,
       triangle_slots_, materials_;
   bool map_results_ = false;  // asked for and CL_DEVICE_HOST_UNIFIED_MEMORY: mapped, not read
+  bool huge_pages_ = false;   // a CPU device with CL_DEVICE_HOST_UNIFIED_MEMORY: large scene buffers on 2 MiB pages
   bool overlap_ = true;
   bool events_plausible_ = true;
   ResultSlot slots_[2];
