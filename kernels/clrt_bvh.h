@@ -60,13 +60,24 @@ CLRT_INLINE vec3 inverse_direction(const vec3* D) {
  * widened by p on every side, p = pad x max|O|, at no cost per node. (The
  * rounding of O +- p, 2^-24 max|O|, is far inside p.) */
 #define CLRT_RAY_PAD ((real)CLRT_BVH_PAD(CLRT_PRECISION, CLRT_BVH_SPHERES))
+/* The box tests' multiply-add: fma() where the host knows the device fuses
+ * it in hardware (-DCLRT_FAST_FMA: GPUs, and CPU drivers on a CPU with FMA
+ * instructions: PoCL's mad() is a multiply and an add, 1.02-1.07x slower
+ * on spheres, docs/results/wide-hierarchy.md), else mad(), which a device
+ * may fuse or not: either rounding is inside the padding below. (OpenCL's
+ * FP_FAST_FMAF would say it, but neither PoCL nor rusticl defines it.) */
+#ifdef CLRT_FAST_FMA
+#define BOX_MAD(a, b, c) fma(a, b, c)
+#else
+#define BOX_MAD(a, b, c) mad(a, b, c)
+#endif
+
 /* A slab's distance (plane - origin) / D as plane * inverse - origin *
- * inverse, one multiply-add (mad(): the device's fastest, fused or not) per
- * plane with the products below taken once per ray: it adds a rounding of
- * ~2^-24 |O| to the plane's distance (of origin * inverse) where the
- * difference had none, far inside the ray's padding p (2^-17 |O| and more:
- * CLRT_BVH_PAD_*); the rest is relative to the distance, inside
- * CLRT_BOX_SLACK, as before. */
+ * inverse, one multiply-add (BOX_MAD(): fused or not) per plane with the
+ * products below taken once per ray: it adds a rounding of ~2^-24 |O| to
+ * the plane's distance (of origin * inverse) where the difference had
+ * none, far inside the ray's padding p (2^-17 |O| and more: CLRT_BVH_PAD_*);
+ * the rest is relative to the distance, inside CLRT_BOX_SLACK, as before. */
 typedef struct box_origins {
   vec3 lower, upper; /* where the lower and upper planes are seen from, times the inverse direction */
 } box_origins;
@@ -84,19 +95,19 @@ CLRT_INLINE box_origins padded_origins(const vec3* O, const vec3* inverse) {
  * which is relative to the distance (the rest is inside the ray's padding:
  * box_origins). Clipped to (tmin, limit) before, as they are, the widening
  * covers the bounds too. */
-#define WIDEN_DOWN(t) mad(-fabs(t), CLRT_BOX_SLACK, t)
-#define WIDEN_UP(t) mad(fabs(t), CLRT_BOX_SLACK, t)
+#define WIDEN_DOWN(t) BOX_MAD(-fabs(t), CLRT_BOX_SLACK, t)
+#define WIDEN_UP(t) BOX_MAD(fabs(t), CLRT_BOX_SLACK, t)
 
 /* Lanes whose ray may meet child k's box within (tmin, limit); `enter`
  * gets their entry distances, widened as the exit is. */
 CLRT_INLINE lint child_overlap(__global const clrt_wide_node* node, int k, const box_origins* O, const vec3* inverse,
                                real tmin, lreal limit, lreal* enter_out) {
-  const lreal x0 = mad((lreal)node->lower[0][k], (*inverse).x, -O->lower.x);
-  const lreal x1 = mad((lreal)node->upper[0][k], (*inverse).x, -O->upper.x);
-  const lreal y0 = mad((lreal)node->lower[1][k], (*inverse).y, -O->lower.y);
-  const lreal y1 = mad((lreal)node->upper[1][k], (*inverse).y, -O->upper.y);
-  const lreal z0 = mad((lreal)node->lower[2][k], (*inverse).z, -O->lower.z);
-  const lreal z1 = mad((lreal)node->upper[2][k], (*inverse).z, -O->upper.z);
+  const lreal x0 = BOX_MAD((lreal)node->lower[0][k], (*inverse).x, -O->lower.x);
+  const lreal x1 = BOX_MAD((lreal)node->upper[0][k], (*inverse).x, -O->upper.x);
+  const lreal y0 = BOX_MAD((lreal)node->lower[1][k], (*inverse).y, -O->lower.y);
+  const lreal y1 = BOX_MAD((lreal)node->upper[1][k], (*inverse).y, -O->upper.y);
+  const lreal z0 = BOX_MAD((lreal)node->lower[2][k], (*inverse).z, -O->lower.z);
+  const lreal z1 = BOX_MAD((lreal)node->upper[2][k], (*inverse).z, -O->upper.z);
   /* the interval inside (tmin, limit) first, then widened (WIDEN_*) */
   const lreal enter = WIDEN_DOWN(BMAX(BMAX(BMIN(x0, x1), BMIN(y0, y1)), BMAX(BMIN(z0, z1), (lreal)tmin)));
   const lreal leave = WIDEN_UP(BMIN(BMIN(BMAX(x0, x1), BMAX(y0, y1)), BMIN(BMAX(z0, z1), limit)));
@@ -124,12 +135,12 @@ typedef struct slab_ray {
 #define NODE_ROW(node, offset) TO_WIDE_REAL(WIDE_LOAD((__global const clrt_f32*)(node) + (offset)))
 CLRT_INLINE wide_mask ray_boxes(__global const clrt_wide_node* node, const slab_ray* r, real tmin, real limit,
                                 wide_real* enter_out) {
-  const wide_real nx = mad(NODE_ROW(node, r->near_x), (wide_real)r->ix, (wide_real)-r->near_origin_x);
-  const wide_real fx = mad(NODE_ROW(node, r->far_x), (wide_real)r->ix, (wide_real)-r->far_origin_x);
-  const wide_real ny = mad(NODE_ROW(node, r->near_y), (wide_real)r->iy, (wide_real)-r->near_origin_y);
-  const wide_real fy = mad(NODE_ROW(node, r->far_y), (wide_real)r->iy, (wide_real)-r->far_origin_y);
-  const wide_real nz = mad(NODE_ROW(node, r->near_z), (wide_real)r->iz, (wide_real)-r->near_origin_z);
-  const wide_real fz = mad(NODE_ROW(node, r->far_z), (wide_real)r->iz, (wide_real)-r->far_origin_z);
+  const wide_real nx = BOX_MAD(NODE_ROW(node, r->near_x), (wide_real)r->ix, (wide_real)-r->near_origin_x);
+  const wide_real fx = BOX_MAD(NODE_ROW(node, r->far_x), (wide_real)r->ix, (wide_real)-r->far_origin_x);
+  const wide_real ny = BOX_MAD(NODE_ROW(node, r->near_y), (wide_real)r->iy, (wide_real)-r->near_origin_y);
+  const wide_real fy = BOX_MAD(NODE_ROW(node, r->far_y), (wide_real)r->iy, (wide_real)-r->far_origin_y);
+  const wide_real nz = BOX_MAD(NODE_ROW(node, r->near_z), (wide_real)r->iz, (wide_real)-r->near_origin_z);
+  const wide_real fz = BOX_MAD(NODE_ROW(node, r->far_z), (wide_real)r->iz, (wide_real)-r->far_origin_z);
   const wide_real enter = WIDEN_DOWN(BMAX(BMAX(nx, ny), BMAX(nz, (wide_real)tmin)));
   const wide_real leave = WIDEN_UP(BMIN(BMIN(fx, fy), BMIN(fz, (wide_real)limit)));
   const wide_mask used = TO_WIDE_MASK(WIDE_LOAD(node->count) != 0);

@@ -14,6 +14,18 @@
 #include "util/log.hpp"
 
 namespace clrt {
+
+bool fuses_multiply_add(const DeviceInfo& dev) {
+  if (is_gpu_type(dev.type)) return true;
+  if (!is_cpu_type(dev.type)) return false;
+#if defined(__x86_64__) || defined(__i386__)
+  return __builtin_cpu_supports("fma");
+#elif defined(__aarch64__)
+  return true;  // (FMA is part of ARMv8's floating point)
+#else
+  return false;
+#endif
+}
 namespace {
 
 // (named apart from image_file.cpp's lower(): clrt_core is a unity build)

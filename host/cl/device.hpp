@@ -45,6 +45,12 @@ inline bool ends_long_loops(const DeviceInfo& dev) {
   return dev.name.rfind("llvmpipe", 0) == 0;
 }
 
+// Whether the device runs fma() in hardware, as fast as a multiply: every
+// GPU, and a CPU device (its driver compiles for this machine's CPU: PoCL,
+// llvmpipe) where this CPU has FMA instructions. (OpenCL's FP_FAST_FMAF
+// would say so in the kernel; neither PoCL nor rusticl defines it.)
+bool fuses_multiply_add(const DeviceInfo& dev);
+
 // Every device of every platform. Throws DeviceError("no OpenCL platform ...")
 // when the ICD loader finds none.
 std::vector<DeviceInfo> list_devices();

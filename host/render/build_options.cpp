@@ -124,6 +124,7 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
     options.push_back(define("CLRT_BVH_WIDTH", CLRT_BVH_WIDTH));  // the host's clrt_wide_node
     // (the walk's share of the boxes' padding: CLRT_BVH_PAD)
     options.push_back(define("CLRT_BVH_SPHERES", features.sphere_count > 0));
+    if (cfg.fast_fma.value_or(false)) options.push_back("-DCLRT_FAST_FMA");
   }
   if (cfg.specialize) add_specialization(features, options);
   // The tree walk's pending rays take a slot per level (clrt_ray_tree.h): a scene

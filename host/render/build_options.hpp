@@ -1,6 +1,7 @@
 // build_options.hpp - every -D / -cl-* option of the kernel is made here, in
 // one place, so that it can be logged and used as part of the cache key.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,10 @@ struct KernelConfig {
   // DeviceRenderer on devices that do (ends_long_loops()); tests set it
   // elsewhere to see that it reports nothing where nothing happened.
   bool loop_limit_probe = false;
+  // The hierarchy's box tests with fma() (-DCLRT_FAST_FMA, kernels/
+  // clrt_bvh.h); unset: DeviceRenderer sets it to fuses_multiply_add().
+  // Either way the images are the same (tests/render/test_bvh.cpp).
+  std::optional<bool> fast_fma;
 };
 
 // Pixels per work-item: cfg.lanes if set. The renderer sets it from

@@ -55,6 +55,7 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
     : device_(device), config_(std::move(config)), requested_lanes_(config_.lanes), local_(local), overlap_(overlap) {
   if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);  // until prepare() chooses
   config_.loop_limit_probe = config_.loop_limit_probe || ends_long_loops(device_);
+  if (!config_.fast_fma) config_.fast_fma = fuses_multiply_add(device_);
   map_results_ = map_results && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
   huge_pages_ = is_cpu_type(device_.type) && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
   context_ = cl::Context(device_.device);
