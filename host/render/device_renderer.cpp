@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstring>
 #include <limits>
+#include <thread>
 
 #include "cl/kernel_source.hpp"
 #include "cl/program.hpp"
@@ -20,19 +21,33 @@ namespace clrt {
 namespace {
 
 // A read-only scene buffer of `bytes`. On a CPU device that shares the
-// host's memory (PoCL, llvmpipe), one of 8 MiB or more asks the kernel for
-// 2 MiB pages before anything is written to it: a walk of a large scene
-// reads nodes and primitives all over hundreds of MiB, and with 4 KiB pages
-// nearly every read also misses the TLB (Embree asks the same for its
-// hierarchy). The buffer is mapped, its storage advised, and unmapped; where
-// the mapped pointer is not the device's storage the hint changes nothing.
-// Measured: docs/results/wide-hierarchy.md, "Huge pages".
+// host's memory (PoCL, llvmpipe), the hierarchy's buffers of 8 MiB or more
+// are asked for on 2 MiB pages before anything is written to them: a walk
+// reads a node at every step, all over tens of MiB, and with 4 KiB pages
+// nearly every read that misses the caches also misses the TLB (Embree asks
+// the same for its hierarchy). The buffer is mapped, its storage advised
+// and touched once per 2 MiB page by every core (a huge page's first touch
+// clears it: on this project's KVM machine ~1 ms each, so one thread would
+// add ~270 ms to the upload of 4 million triangles' buffers), and unmapped;
+// where the mapped pointer is not the device's storage the hint changes
+// nothing. The primitives' own records are left on small pages: read at
+// leaves only, their faults cost more upload time than they saved frame
+// time (docs/results/wide-hierarchy.md, "Huge pages").
 cl::Buffer scene_buffer(const cl::Context& ctx, const cl::CommandQueue& q, size_t bytes, bool huge_pages) {
   constexpr size_t kHugePage = size_t(2) << 20;
   if (!huge_pages || bytes < 4 * kHugePage) return cl::Buffer(ctx, CL_MEM_READ_ONLY, bytes);
   cl::Buffer b(ctx, CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR, bytes);
   void* p = q.enqueueMapBuffer(b, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, bytes);
-  advise_huge_pages(p, bytes);
+  if (advise_huge_pages(p, bytes) > 0) {
+    const size_t workers = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> threads;
+    char* c = static_cast<char*>(p);
+    for (size_t w = 0; w < workers; ++w)
+      threads.emplace_back([=] {
+        for (size_t at = w * kHugePage; at < bytes; at += workers * kHugePage) c[at] = 0;
+      });
+    for (std::thread& t : threads) t.join();
+  }
   q.enqueueUnmapMemObject(b, p);
   q.finish();
   return b;
@@ -91,9 +106,8 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   // their lo parts only for the variant that reads them (clrt_layout.h)
   const size_t triangle_count = std::max<size_t>(1, scene.triangles.size());
   const bool with_lo = CLRT_READS_TRIANGLE_LO(kernel_code(config_.precision));
-  const bool huge = huge_pages_;
-  triangles_ = scene_buffer(context_, queue_, triangle_count * sizeof(clrt_triangle), huge);
-  triangles_lo_ = scene_buffer(context_, queue_, (with_lo ? triangle_count : 1) * sizeof(clrt_triangle_lo), huge);
+  triangles_ = cl::Buffer(context_, CL_MEM_READ_ONLY, triangle_count * sizeof(clrt_triangle));
+  triangles_lo_ = cl::Buffer(context_, CL_MEM_READ_ONLY, (with_lo ? triangle_count : 1) * sizeof(clrt_triangle_lo));
   size_t triangles_written = 0;
   const TriangleSink to_device = [&](const clrt_triangle* triangles, const clrt_triangle_lo* lo, size_t count) {
     queue_.enqueueWriteBuffer(triangles_, CL_TRUE, triangles_written * sizeof(clrt_triangle),
@@ -109,13 +123,14 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   triangle_slots_ = upload(context_, queue_, order ? triangle_slots(*bvh) : std::vector<clrt_i32>{});
   SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling, to_device, order);
   params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
-  spheres_ = upload(context_, queue_, data.spheres, huge);
+  spheres_ = upload(context_, queue_, data.spheres);
   lights_ = upload(context_, queue_, data.lights);
   if (walks && !bvh) throw std::logic_error("BVH build without its hierarchy");
   // (one-element stand-ins when the kernel does not walk a hierarchy; both
   // branches lvalues, so the hierarchy is uploaded without a copy)
   const std::vector<clrt_wide_node> no_nodes;
   const std::vector<clrt_i32> no_primitives;
+  const bool huge = huge_pages_;
   nodes_ = upload(context_, queue_, bvh ? bvh->wide : no_nodes, huge);
   primitives_ = upload(context_, queue_, bvh ? bvh->primitives : no_primitives, huge);
   leaf_spheres_ = upload(
