@@ -195,6 +195,23 @@ Scene torus_grid_scene(size_t triangles) {
   return load_scene(folder / "scene.json");
 }
 
+// The scene through the hierarchy and without, at depth 3, at 1, 4, 8 and 16
+// lanes, with the box tests' multiply-adds fused (fma) and not (mad): the
+// same image every time.
+void check_every_lane_count(const Scene& scene, int width, int height) {
+  for (int lanes : {1, 4, 8, 16})
+    for (bool fused : {false, true}) {
+      INFO(lanes << " lanes, box tests " << (fused ? "fma" : "mad"));
+      KernelConfig config;
+      config.lanes = lanes;
+      config.fast_fma = fused;
+      FrameStats with_bvh;
+      const Image a = render(scene, width, height, 3, config, Accel::Bvh, &with_bvh);
+      CHECK(with_bvh.bvh);
+      CHECK(pixels_differing(a, render(scene, width, height, 3, config, Accel::None)) == 0);
+    }
+}
+
 }  // namespace
 
 TEST_CASE("the wide hierarchy holds every entry once, in the binary tree's boxes", "[bvh]") {
@@ -392,17 +409,7 @@ TEST_CASE("BVH images equal brute-force images at every lane count", "[opencl][b
   // among the lanes (a reduction whose code differs per lane count).
   // The box tests round once (fma) or twice (mad): either way inside the
   // boxes' padding, so the same image.
-  const Scene scene = random_spheres(300, 17);
-  for (int lanes : {1, 4, 8, 16})
-    for (bool fused : {false, true}) {
-      INFO(lanes << " lanes, box tests " << (fused ? "fma" : "mad"));
-      KernelConfig config;
-      config.lanes = lanes;
-      config.fast_fma = fused;
-      const Image a = render(scene, 80, 60, 3, config, Accel::Bvh);
-      const Image b = render(scene, 80, 60, 3, config, Accel::None);
-      CHECK(pixels_differing(a, b) == 0);
-    }
+  check_every_lane_count(random_spheres(300, 17), 80, 60);
 }
 
 TEST_CASE("the lanes probe picks a candidate, and the image is every candidate's", "[opencl][bvh][lanes]") {
@@ -507,17 +514,7 @@ TEST_CASE("a hierarchy of triangles alone: its image is brute force's at every l
   // bit. (1 lane: every ray walks alone, one triangle at a time.)
   const Scene scene = torus_grid_scene(3000);
   REQUIRE(scene.spheres.empty());
-  for (int lanes : {1, 4, 8, 16})
-    for (bool fused : {false, true}) {
-      INFO(lanes << " lanes, box tests " << (fused ? "fma" : "mad"));
-      KernelConfig config;
-      config.lanes = lanes;
-      config.fast_fma = fused;
-      FrameStats with_bvh;
-      const Image a = render(scene, 64, 48, 3, config, Accel::Bvh, &with_bvh);
-      CHECK(with_bvh.bvh);
-      CHECK(pixels_differing(a, render(scene, 64, 48, 3, config, Accel::None)) == 0);
-    }
+  check_every_lane_count(scene, 64, 48);
 }
 
 TEST_CASE("BVH images equal brute-force images on the stiff and extreme cases", "[opencl][bvh][stability][slow]") {
