@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cstring>
 #include <limits>
-#include <thread>
 
 #include "cl/kernel_source.hpp"
 #include "cl/program.hpp"
@@ -34,20 +33,10 @@ namespace {
 // leaves only, their faults cost more upload time than they saved frame
 // time (docs/results/wide-hierarchy.md, "Huge pages").
 cl::Buffer scene_buffer(const cl::Context& ctx, const cl::CommandQueue& q, size_t bytes, bool huge_pages) {
-  constexpr size_t kHugePage = size_t(2) << 20;
-  if (!huge_pages || bytes < 4 * kHugePage) return cl::Buffer(ctx, CL_MEM_READ_ONLY, bytes);
+  if (!huge_pages || bytes < 4 * kHugePageBytes) return cl::Buffer(ctx, CL_MEM_READ_ONLY, bytes);
   cl::Buffer b(ctx, CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR, bytes);
   void* p = q.enqueueMapBuffer(b, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, bytes);
-  if (advise_huge_pages(p, bytes) > 0) {
-    const size_t workers = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::thread> threads;
-    char* c = static_cast<char*>(p);
-    for (size_t w = 0; w < workers; ++w)
-      threads.emplace_back([=] {
-        for (size_t at = w * kHugePage; at < bytes; at += workers * kHugePage) c[at] = 0;
-      });
-    for (std::thread& t : threads) t.join();
-  }
+  place_on_huge_pages(p, bytes);
   q.enqueueUnmapMemObject(b, p);
   q.finish();
   return b;
@@ -71,8 +60,9 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
   if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);  // until prepare() chooses
   config_.loop_limit_probe = config_.loop_limit_probe || ends_long_loops(device_);
   if (!config_.fast_fma) config_.fast_fma = fuses_multiply_add(device_);
-  map_results_ = map_results && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
-  huge_pages_ = is_cpu_type(device_.type) && device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
+  const bool unified = device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
+  map_results_ = map_results && unified;
+  huge_pages_ = is_cpu_type(device_.type) && unified;
   context_ = cl::Context(device_.device);
   queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
   if (!map_results_) transfer_queue_ = cl::CommandQueue(context_, device_.device);
@@ -130,11 +120,11 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   // branches lvalues, so the hierarchy is uploaded without a copy)
   const std::vector<clrt_wide_node> no_nodes;
   const std::vector<clrt_i32> no_primitives;
-  const bool huge = huge_pages_;
-  nodes_ = upload(context_, queue_, bvh ? bvh->wide : no_nodes, huge);
-  primitives_ = upload(context_, queue_, bvh ? bvh->primitives : no_primitives, huge);
-  leaf_spheres_ = upload(
-      context_, queue_, bvh ? pack_leaf_spheres(bvh->primitives, data.spheres) : std::vector<clrt_leaf_sphere>{}, huge);
+  nodes_ = upload(context_, queue_, bvh ? bvh->wide : no_nodes, huge_pages_);
+  primitives_ = upload(context_, queue_, bvh ? bvh->primitives : no_primitives, huge_pages_);
+  leaf_spheres_ =
+      upload(context_, queue_, bvh ? pack_leaf_spheres(bvh->primitives, data.spheres) : std::vector<clrt_leaf_sphere>{},
+             huge_pages_);
   planes_ = upload(context_, queue_, data.planes);
   materials_ = upload(context_, queue_, data.materials);
   timings_.upload_ms = ms_since(t0);

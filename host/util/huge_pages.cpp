@@ -1,7 +1,10 @@
 // huge_pages.cpp - madvise(MADV_HUGEPAGE) over the aligned middle of a block.
 #include "util/huge_pages.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <thread>
+#include <vector>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -11,7 +14,7 @@ namespace clrt {
 
 size_t advise_huge_pages(void* p, size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr uintptr_t kHugePage = uintptr_t(2) << 20;
+  constexpr uintptr_t kHugePage = kHugePageBytes;
   const uintptr_t start = reinterpret_cast<uintptr_t>(p);
   if (p == nullptr || bytes < kHugePage || start > UINTPTR_MAX - bytes) return 0;
   const uintptr_t begin = (start + kHugePage - 1) & ~(kHugePage - 1);
@@ -25,6 +28,20 @@ size_t advise_huge_pages(void* p, size_t bytes) {
   (void)bytes;
   return 0;
 #endif
+}
+
+size_t place_on_huge_pages(void* p, size_t bytes) {
+  const size_t advised = advise_huge_pages(p, bytes);
+  if (advised == 0) return 0;
+  const size_t workers = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> threads;
+  char* c = static_cast<char*>(p);
+  for (size_t w = 0; w < workers; ++w)
+    threads.emplace_back([=] {
+      for (size_t at = w * kHugePageBytes; at < bytes; at += workers * kHugePageBytes) c[at] = 0;
+    });
+  for (std::thread& t : threads) t.join();
+  return advised;
 }
 
 }  // namespace clrt

@@ -1,5 +1,6 @@
 // test_huge_pages.cpp - advise_huge_pages() (util/huge_pages.hpp) advises
 // exactly the whole 2 MiB pages inside a block, none where none fit.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <vector>
@@ -9,7 +10,7 @@
 // (clrt_tests is a unity build: each file's code is in a namespace of its own.)
 namespace test_huge_pages {
 
-constexpr size_t kHugePage = size_t(2) << 20;
+constexpr size_t kHugePage = clrt::kHugePageBytes;
 
 TEST_CASE("advise_huge_pages advises the whole 2 MiB pages inside a block, no more", "[util]") {
   CHECK(clrt::advise_huge_pages(nullptr, 64 * kHugePage) == 0);
@@ -33,6 +34,16 @@ TEST_CASE("advise_huge_pages advises the whole 2 MiB pages inside a block, no mo
 #else
   CHECK(advised == 0);
 #endif
+  // place_on_huge_pages() advises the same pages and, where it did, writes a
+  // zero at every 2 MiB step from the block's start (the first touches)
+  std::fill(block.begin(), block.end(), char(7));
+  const size_t placed = clrt::place_on_huge_pages(p, bytes);
+  CHECK(placed == advised);
+  if (placed != 0) {
+    CHECK(p[0] == 0);
+    CHECK(p[kHugePage] == 0);
+    CHECK(p[1] == 7);
+  }
   p[0] = 1;  // the block stays the caller's, readable and writable
   p[bytes - 1] = 2;
   CHECK(block[1] + block[block.size() - 1] == 3);
