@@ -5,13 +5,12 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "cl/launch_timing.hpp"
 #include "util/error.hpp"
+#include "util/parallel.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -136,20 +135,9 @@ std::vector<DeviceShare> render_bands(const std::vector<DeviceRenderer*>& worker
   }
   // One host thread per device: each owns its context, queue and program, and
   // writes disjoint rows of `img`.
-  std::vector<std::exception_ptr> errors(workers.size());
-  std::vector<std::thread> threads;
-  for (size_t i = 0; i < workers.size(); ++i) {
-    threads.emplace_back([&, i] {
-      try {
-        run_worker(*workers[i], queue, img, policy, int(workers.size()), shares[i], rows, range_rows, cancel);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    });
-  }
-  for (auto& t : threads) t.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  run_on_threads(workers.size(), [&](size_t i) {
+    run_worker(*workers[i], queue, img, policy, int(workers.size()), shares[i], rows, range_rows, cancel);
+  });
   return shares;
 }
 

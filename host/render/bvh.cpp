@@ -6,15 +6,19 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <future>
 #include <limits>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 #include <utility>
 
 #include "render/wide_bvh.hpp"
 #include "util/doing.hpp"
 #include "util/error.hpp"
+#include "util/parallel.hpp"
 
 namespace clrt {
 
@@ -50,24 +54,12 @@ bool uses_bvh(Accel accel, size_t primitive_count, Precision precision) {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr float kInfinityF = std::numeric_limits<float>::infinity();
 
+// A box in double, before it is rounded outward to float.
 struct Box {
   std::array<double, 3> lower{kInfinity, kInfinity, kInfinity};
   std::array<double, 3> upper{-kInfinity, -kInfinity, -kInfinity};
-
-  void grow(const Box& other) {
-    for (int a = 0; a < 3; ++a) {
-      lower[a] = std::min(lower[a], other.lower[a]);
-      upper[a] = std::max(upper[a], other.upper[a]);
-    }
-  }
-  bool empty() const { return lower[0] > upper[0]; }
-  // Half the surface area (the heuristic compares ratios only).
-  double half_area() const {
-    if (empty()) return 0;
-    const double x = upper[0] - lower[0], y = upper[1] - lower[1], z = upper[2] - lower[2];
-    return x * y + y * z + z * x;
-  }
 };
 
 // Outward rounding to float: the float box contains the double one.
@@ -98,15 +90,84 @@ struct Item {
       upper[a] = round_up(box.upper[a]);
     }
   }
-  Box box() const {
-    Box b;
-    for (int a = 0; a < 3; ++a) b.lower[a] = lower[a], b.upper[a] = upper[a];
-    return b;
+};
+
+// A box of float corners, as the items and the nodes hold them (exact: no
+// rounding grows it).
+struct FloatBox {
+  std::array<float, 3> lower{kInfinityF, kInfinityF, kInfinityF};
+  std::array<float, 3> upper{-kInfinityF, -kInfinityF, -kInfinityF};
+
+  void grow(const std::array<float, 3>& low, const std::array<float, 3>& high) {
+    for (int a = 0; a < 3; ++a) {
+      lower[a] = std::min(lower[a], low[a]);
+      upper[a] = std::max(upper[a], high[a]);
+    }
   }
-  Box centre_point() const {
-    Box b;
-    for (int a = 0; a < 3; ++a) b.lower[a] = b.upper[a] = centroid[a];
-    return b;
+  void grow(const FloatBox& other) { grow(other.lower, other.upper); }
+  bool empty() const { return lower[0] > upper[0]; }
+  double extent(int a) const { return double(upper[a]) - double(lower[a]); }
+  // Half the surface area (the heuristic compares ratios only).
+  double half_area() const {
+    if (empty()) return 0;
+    const double x = extent(0), y = extent(1), z = extent(2);
+    return x * y + y * z + z * x;
+  }
+};
+
+// What a node's build needs of its items: their boxes' union and their
+// centroids' box.
+struct Bounds {
+  FloatBox box, centroids;
+  void add(const Item& item) {
+    box.grow(item.lower, item.upper);
+    centroids.grow(item.centroid, item.centroid);
+  }
+};
+
+// A bin's box as four float lanes (the fourth unused), so that growing it
+// by an item is one vector min and one vector max.
+struct alignas(16) BinBox {
+  float lower[4] = {kInfinityF, kInfinityF, kInfinityF, kInfinityF};
+  float upper[4] = {-kInfinityF, -kInfinityF, -kInfinityF, -kInfinityF};
+
+  void grow(const Item& item) {
+    // 16 bytes from each corner: x, y, z and the next member's first float
+    const auto* bytes = reinterpret_cast<const unsigned char*>(&item);
+    float low[4], high[4];
+    std::memcpy(low, bytes + offsetof(Item, lower), sizeof low);
+    std::memcpy(high, bytes + offsetof(Item, upper), sizeof high);
+    for (int k = 0; k < 4; ++k) {
+      lower[k] = std::min(lower[k], low[k]);
+      upper[k] = std::max(upper[k], high[k]);
+    }
+  }
+  FloatBox merged(const BinBox& other) const {
+    FloatBox box;
+    for (int a = 0; a < 3; ++a) {
+      box.lower[a] = std::min(lower[a], other.lower[a]);
+      box.upper[a] = std::max(upper[a], other.upper[a]);
+    }
+    return box;
+  }
+};
+static_assert(std::is_standard_layout_v<Item> && offsetof(Item, upper) + 16 <= sizeof(Item), "BinBox reads 16 bytes");
+
+// The SAH's bins along one axis of a node's centroid box.
+struct Binning {
+  int axis = 0;
+  double low = 0, scale = 0;  // bin = (centroid - low) * scale
+
+  Binning() = default;
+  Binning(const FloatBox& centroids, int a) : axis(a), low(centroids.lower[a]) {
+    const double extent = centroids.extent(a);
+    scale = extent > 0 ? double(kBvhBins) / extent : 0;
+  }
+  // Whether the centroids spread along the axis (else every item is in bin 0).
+  bool separates() const { return scale > 0; }
+  int bin(float value) const {
+    const int b = static_cast<int>((double(value) - low) * scale);
+    return std::clamp(b, 0, kBvhBins - 1);
   }
 };
 
@@ -134,22 +195,22 @@ class Builder {
  public:
   Builder(std::vector<Item>& items, Bvh& out, ThreadBudget& threads) : items_(items), out_(out), threads_(threads) {}
 
-  // Builds node `node` of out_ over items_[begin, end). The layout does not
-  // depend on which subtrees run on other threads: a subtree built apart
-  // lands where the one-thread build would have put it (splice()).
-  void build(size_t node, size_t begin, size_t end, int depth) {
-    Box bounds, centroids;
-    for (size_t i = begin; i < end; ++i) {
-      bounds.grow(items_[i].box());
-      centroids.grow(items_[i].centre_point());
-    }
-    set_box(node, bounds);
+  // Builds the whole hierarchy, its root out_.nodes[0].
+  void build_root() { build(0, 0, items_.size(), 0, measure(0, items_.size())); }
+
+  // Builds node `node` of out_ over items_[begin, end), whose boxes and
+  // centroids `bounds` holds (the parent's partition measured them: each
+  // level reads the items twice, once to bin them on every axis at once and
+  // once to partition them).
+  void build(size_t node, size_t begin, size_t end, int depth, const Bounds& bounds) {
+    set_box(node, bounds.box);
     out_.depth = std::max(out_.depth, depth);
     const size_t count = end - begin;
     int axis = -1;
     size_t middle = begin;
+    Bounds left, right;
     if (count > size_t(kBvhLeafSize) && depth < CLRT_BVH_MAX_DEPTH - 1)
-      choose_split(begin, end, bounds, centroids, axis, middle);
+      choose_split(begin, end, bounds, axis, middle, left, right);
     if (axis < 0) {
       make_leaf(node, begin, end);
       return;
@@ -163,10 +224,10 @@ class Builder {
       Bvh part;
       part.nodes.resize(1);
       auto done = std::async(std::launch::async, [&, middle, end, depth] {
-        Builder(items_, part, threads_).build(0, middle, end, depth + 1);
+        Builder(items_, part, threads_).build(0, middle, end, depth + 1, right);
       });
       try {
-        build(children, begin, middle, depth + 1);
+        build(children, begin, middle, depth + 1, left);
       } catch (...) {
         done.wait();
         threads_.give_back();
@@ -178,43 +239,61 @@ class Builder {
       splice(children + 1, part);
       return;
     }
-    build(children, begin, middle, depth + 1);
-    build(children + 1, middle, end, depth + 1);
+    build(children, begin, middle, depth + 1, left);
+    build(children + 1, middle, end, depth + 1, right);
   }
 
  private:
   // The binned SAH split of [begin, end): sets axis (-1 = a leaf is cheaper
-  // or nothing separates the centroids) and partitions items around middle.
-  void choose_split(size_t begin, size_t end, const Box& bounds, const Box& centroids, int& axis, size_t& middle) {
+  // or nothing separates the centroids), partitions items around middle and
+  // measures both sides.
+  void choose_split(size_t begin, size_t end, const Bounds& bounds, int& axis, size_t& middle, Bounds& left,
+                    Bounds& right) {
     const size_t count = end - begin;
+    // Every axis binned in one pass over the items.
+    std::array<Binning, 3> binning;
+    for (int a = 0; a < 3; ++a) binning[a] = Binning(bounds.centroids, a);
+    // (two sets of bins, for the even and the odd items: consecutive items
+    // often fall in the same bin, and one set would make each update wait
+    // for the last one's store)
+    std::array<std::array<std::array<BinBox, kBvhBins>, 3>, 2> bin_boxes;
+    std::array<std::array<std::array<size_t, kBvhBins>, 3>, 2> bin_counts{};
+    for (size_t i = begin; i < end; ++i) {
+      const Item& item = items_[i];
+      const size_t set = i & 1;
+      for (int a = 0; a < 3; ++a) {
+        const int b = binning[a].bin(item.centroid[a]);
+        bin_boxes[set][a][b].grow(item);
+        ++bin_counts[set][a][b];
+      }
+    }
+    std::array<std::array<FloatBox, kBvhBins>, 3> boxes;
+    std::array<std::array<size_t, kBvhBins>, 3> counts{};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < kBvhBins; ++b) {
+        boxes[a][b] = bin_boxes[0][a][b].merged(bin_boxes[1][a][b]);
+        counts[a][b] = bin_counts[0][a][b] + bin_counts[1][a][b];
+      }
     double best_cost = kInfinity;
     int best_axis = -1, best_bin = 0;
     for (int a = 0; a < 3; ++a) {
-      const double low = centroids.lower[a], extent = centroids.upper[a] - low;
-      if (!(extent > 0)) continue;
-      std::array<Box, kBvhBins> boxes;
-      std::array<size_t, kBvhBins> counts{};
-      for (size_t i = begin; i < end; ++i) {
-        const int b = bin(items_[i].centroid[a], low, extent);
-        boxes[b].grow(items_[i].box());
-        ++counts[b];
-      }
+      if (!binning[a].separates()) continue;
       // Costs of splitting after bin b: left [0, b], right [b + 1, bins).
       std::array<double, kBvhBins> right_cost{};
-      Box right;
+      FloatBox right_box;
       size_t right_count = 0;
       for (int b = kBvhBins - 1; b > 0; --b) {
-        right.grow(boxes[b]);
-        right_count += counts[b];
-        right_cost[b - 1] = right.half_area() * double(right_count);
+        right_box.grow(boxes[a][b]);
+        right_count += counts[a][b];
+        right_cost[b - 1] = right_box.half_area() * double(right_count);
       }
-      Box left;
+      FloatBox left_box;
       size_t left_count = 0;
       for (int b = 0; b < kBvhBins - 1; ++b) {
-        left.grow(boxes[b]);
-        left_count += counts[b];
+        left_box.grow(boxes[a][b]);
+        left_count += counts[a][b];
         if (left_count == 0 || left_count == count) continue;
-        const double cost = left.half_area() * double(left_count) + right_cost[b];
+        const double cost = left_box.half_area() * double(left_count) + right_cost[b];
         if (cost < best_cost) best_cost = cost, best_axis = a, best_bin = b;
       }
     }
@@ -227,33 +306,49 @@ class Builder {
       if (count > size_t(kBvhMaxLeafSize)) {
         axis = 0;
         for (int a = 1; a < 3; ++a)
-          if (bounds.upper[a] - bounds.lower[a] > bounds.upper[axis] - bounds.lower[axis]) axis = a;
+          if (bounds.box.extent(a) > bounds.box.extent(axis)) axis = a;
         middle = begin + count / 2;
+        left = measure(begin, middle);
+        right = measure(middle, end);
       }
       return;
     }
     // A leaf costs a test of each primitive for every ray that meets the box;
     // a split, one box test more and the children's tests.
-    const double leaf_cost = bounds.half_area() * double(count);
+    const double leaf_cost = bounds.box.half_area() * double(count);
     if (best_cost >= leaf_cost && count <= size_t(kBvhMaxLeafSize)) return;
-    const double low = centroids.lower[best_axis], extent = centroids.upper[best_axis] - low;
-    auto split =
-        std::partition(items_.begin() + std::ptrdiff_t(begin), items_.begin() + std::ptrdiff_t(end),
-                       [&](const Item& item) { return bin(item.centroid[best_axis], low, extent) <= best_bin; });
     axis = best_axis;
-    middle = size_t(split - items_.begin());
+    middle = partition(begin, end, binning[best_axis], best_bin, left, right);
   }
 
-  static int bin(double value, double low, double extent) {
-    const int b = static_cast<int>(double(kBvhBins) * (value - low) / extent);
-    return std::clamp(b, 0, kBvhBins - 1);
+  // Moves the items of [begin, end) whose centroid bins at most `last_bin`
+  // on `binning`'s axis before the others, measuring both sides on the way;
+  // returns where the second side starts.
+  size_t partition(size_t begin, size_t end, const Binning& binning, int last_bin, Bounds& left, Bounds& right) {
+    const int a = binning.axis;
+    auto goes_left = [&](const Item& item) { return binning.bin(item.centroid[a]) <= last_bin; };
+    size_t i = begin, j = end;
+    for (;;) {
+      while (i < j && goes_left(items_[i])) left.add(items_[i++]);
+      while (i < j && !goes_left(items_[j - 1])) right.add(items_[--j]);
+      if (i == j) return i;
+      std::swap(items_[i], items_[j - 1]);
+      left.add(items_[i++]);
+      right.add(items_[--j]);
+    }
   }
 
-  void set_box(size_t node, const Box& box) {
+  Bounds measure(size_t begin, size_t end) const {
+    Bounds bounds;
+    for (size_t i = begin; i < end; ++i) bounds.add(items_[i]);
+    return bounds;
+  }
+
+  void set_box(size_t node, const FloatBox& box) {
     clrt_bvh_node& n = out_.nodes[node];
     for (int a = 0; a < 3; ++a) {
-      n.lower[a] = box.empty() ? 0.0f : round_down(box.lower[a]);
-      n.upper[a] = box.empty() ? 0.0f : round_up(box.upper[a]);
+      n.lower[a] = box.empty() ? 0.0f : box.lower[a];
+      n.upper[a] = box.empty() ? 0.0f : box.upper[a];
     }
   }
 
@@ -305,6 +400,56 @@ double scene_extent(const Scene& scene, Vec3 origin) {
   return extent;
 }
 
+// Below this many primitives the items are made on one thread.
+constexpr size_t kItemsPerChunk = 65536;
+
+Item sphere_item(const Sphere& s, size_t index, Vec3 origin, double padding_scale, double extent, Precision precision) {
+  Item item;
+  const Vec3 relative = s.center - origin;  // as pack_scene() computes it
+  const std::array<double, 3> c{relative.x, relative.y, relative.z};
+  // The naive variant's grazing hits, ~2^-22 E^2 / r from the sphere.
+  const double own = padding_scale * (std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])}) + s.radius);
+  const double pad = precision == Precision::Naive ? own + std::ldexp(extent * extent / s.radius, -22) : own;
+  // (each step rounded outward: the box holds the exact one)
+  Box box;
+  for (int a = 0; a < 3; ++a) {
+    box.lower[a] = std::nextafter(std::nextafter(c[a] - s.radius, -kInfinity) - pad, -kInfinity);
+    box.upper[a] = std::nextafter(std::nextafter(c[a] + s.radius, kInfinity) + pad, kInfinity);
+    item.centroid[a] = static_cast<float>(c[a]);
+  }
+  item.set_box(box);
+  item.entry = static_cast<clrt_i32>(CLRT_PRIMITIVE_SPHERE << CLRT_PRIMITIVE_KIND_SHIFT) | static_cast<clrt_i32>(index);
+  return item;
+}
+
+// A triangle's item: the box of the vertices as the kernel sees them (float
+// hi parts, or the double for fp64), padded like a sphere's: the watertight
+// test reports a hit only for rays through the triangle or within its edge
+// functions' rounding of it. (The padding and the outward step are monotone,
+// so they are applied once to the vertices' least and greatest coordinate.)
+Item triangle_item(const Triangle& t, size_t index, Vec3 origin, double padding_scale) {
+  Item item;
+  std::array<std::array<double, 3>, 3> vertices;
+  double largest = 0;
+  for (int v = 0; v < 3; ++v) {
+    const Vec3 c = (v == 0 ? t.v0 : v == 1 ? t.v1 : t.v2) - origin;
+    vertices[v] = {c.x, c.y, c.z};
+    largest = std::max({largest, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
+  }
+  const double pad = padding_scale * largest;
+  Box box;
+  for (int a = 0; a < 3; ++a) {
+    const double c0 = vertices[0][a], c1 = vertices[1][a], c2 = vertices[2][a];
+    box.lower[a] = std::nextafter(std::min({c0, c1, c2}) - pad, -kInfinity);
+    box.upper[a] = std::nextafter(std::max({c0, c1, c2}) + pad, kInfinity);
+    item.centroid[a] = static_cast<float>((c0 + c1 + c2) / 3);
+  }
+  item.set_box(box);
+  item.entry =
+      static_cast<clrt_i32>(CLRT_PRIMITIVE_TRIANGLE << CLRT_PRIMITIVE_KIND_SHIFT) | static_cast<clrt_i32>(index);
+  return item;
+}
+
 }  // namespace
 
 double bvh_padding_scale(Precision precision, bool spheres) {
@@ -325,54 +470,26 @@ Bvh build_bvh(const Scene& scene, Precision precision, Vec3 origin, int threads)
   Bvh bvh;
   bvh.padding_scale = bvh_padding_scale(precision, !scene.spheres.empty());
   std::vector<Item> items(scene.spheres.size() + scene.triangles.size());
-  for (size_t i = 0; i < scene.spheres.size(); ++i) {
-    const Sphere& s = scene.spheres[i];
-    const Vec3 relative = s.center - origin;  // as pack_scene() computes it
-    const std::array<double, 3> c{relative.x, relative.y, relative.z};
-    // The naive variant's grazing hits, ~2^-22 E^2 / r from the sphere.
-    const double own = bvh.padding_scale * (std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])}) + s.radius);
-    const double pad = precision == Precision::Naive ? own + std::ldexp(extent * extent / s.radius, -22) : own;
-    // (each step rounded outward: the box holds the exact one)
-    Box box;
-    for (int a = 0; a < 3; ++a) {
-      box.lower[a] = std::nextafter(std::nextafter(c[a] - s.radius, -kInfinity) - pad, -kInfinity);
-      box.upper[a] = std::nextafter(std::nextafter(c[a] + s.radius, kInfinity) + pad, kInfinity);
-      items[i].centroid[a] = static_cast<float>(c[a]);
-    }
-    items[i].set_box(box);
-    items[i].entry =
-        static_cast<clrt_i32>(CLRT_PRIMITIVE_SPHERE << CLRT_PRIMITIVE_KIND_SHIFT) | static_cast<clrt_i32>(i);
-  }
-  // Triangles: the box of the vertices as the kernel sees them (float hi
-  // parts, or the double for fp64), padded like a sphere's: the watertight
-  // test reports a hit only for rays through the triangle or within its
-  // edge functions' rounding of it.
-  for (size_t k = 0; k < scene.triangles.size(); ++k) {
-    const Triangle& t = scene.triangles[k];
-    Item& item = items[scene.spheres.size() + k];
-    std::array<double, 3> sum{0, 0, 0};
-    Box box;
-    const std::array<Vec3, 3> vertices{t.v0 - origin, t.v1 - origin, t.v2 - origin};
-    double largest = 0;
-    for (const Vec3& c : vertices) largest = std::max({largest, std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
-    const double pad = bvh.padding_scale * largest;
-    for (const Vec3& relative : vertices) {
-      const std::array<double, 3> c{relative.x, relative.y, relative.z};
-      for (int a = 0; a < 3; ++a) {
-        box.lower[a] = std::min(box.lower[a], std::nextafter(c[a] - pad, -kInfinity));
-        box.upper[a] = std::max(box.upper[a], std::nextafter(c[a] + pad, kInfinity));
-        sum[a] += c[a];
-      }
-    }
-    item.set_box(box);
-    for (int a = 0; a < 3; ++a) item.centroid[a] = static_cast<float>(sum[a] / 3);
-    item.entry = static_cast<clrt_i32>(CLRT_PRIMITIVE_TRIANGLE << CLRT_PRIMITIVE_KIND_SHIFT) | static_cast<clrt_i32>(k);
-  }
+  const double padding_scale = bvh.padding_scale;
+  parallel_chunks(
+      scene.spheres.size(), kItemsPerChunk,
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+          items[i] = sphere_item(scene.spheres[i], i, origin, padding_scale, extent, precision);
+      },
+      threads);
+  parallel_chunks(
+      scene.triangles.size(), kItemsPerChunk,
+      [&](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k)
+          items[scene.spheres.size() + k] = triangle_item(scene.triangles[k], k, origin, padding_scale);
+      },
+      threads);
   bvh.nodes.reserve(2 * items.size() + 1);
   bvh.nodes.resize(1);
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   ThreadBudget budget(threads);
-  Builder(items, bvh, budget).build(0, 0, items.size(), 0);
+  Builder(items, bvh, budget).build_root();
   std::vector<Item>().swap(items);
   bvh.wide = collapse_bvh(bvh.nodes);
   // triangle entries renamed to their place in the leaves' order

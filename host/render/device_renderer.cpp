@@ -8,51 +8,15 @@
 
 #include "cl/kernel_source.hpp"
 #include "cl/program.hpp"
+#include "render/device_buffers.hpp"
 #include "render/kernel_args.hpp"
 #include "render/lane_choice.hpp"
 #include "render/scene_buffers.hpp"
 #include "util/error.hpp"
-#include "util/huge_pages.hpp"
 #include "util/log.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
-namespace {
-
-// A read-only scene buffer of `bytes`. On a CPU device that shares the
-// host's memory (PoCL, llvmpipe), the hierarchy's buffers of 8 MiB or more
-// are asked for on 2 MiB pages before anything is written to them: a walk
-// reads a node at every step, all over tens of MiB, and with 4 KiB pages
-// nearly every read that misses the caches also misses the TLB (Embree asks
-// the same for its hierarchy). The buffer is mapped, its storage advised
-// and touched once per 2 MiB page by every core (a huge page's first touch
-// clears it: on this project's KVM machine ~1 ms each, so one thread would
-// add ~270 ms to the upload of 4 million triangles' buffers), and unmapped;
-// where the mapped pointer is not the device's storage the hint changes
-// nothing. The primitives' own records are left on small pages: read at
-// leaves only, their faults cost more upload time than they saved frame
-// time (docs/results/wide-hierarchy.md, "Huge pages").
-cl::Buffer scene_buffer(const cl::Context& ctx, const cl::CommandQueue& q, size_t bytes, bool huge_pages) {
-  if (!huge_pages || bytes < 4 * kHugePageBytes) return cl::Buffer(ctx, CL_MEM_READ_ONLY, bytes);
-  cl::Buffer b(ctx, CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR, bytes);
-  void* p = q.enqueueMapBuffer(b, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, bytes);
-  place_on_huge_pages(p, bytes);
-  q.enqueueUnmapMemObject(b, p);
-  q.finish();
-  return b;
-}
-
-template <class T>
-cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::vector<T>& v, bool huge_pages = false) {
-  // Zero-sized buffers are invalid in OpenCL: keep at least one element.
-  const T stand_in{};
-  const size_t bytes = std::max<size_t>(1, v.size()) * sizeof(T);
-  cl::Buffer b = scene_buffer(ctx, q, bytes, huge_pages);
-  q.enqueueWriteBuffer(b, CL_TRUE, 0, bytes, v.empty() ? &stand_in : v.data());
-  return b;
-}
-
-}  // namespace
 
 DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, LocalSize local, bool map_results,
                                bool overlap)
@@ -61,6 +25,7 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
   config_.loop_limit_probe = config_.loop_limit_probe || ends_long_loops(device_);
   if (!config_.fast_fma) config_.fast_fma = fuses_multiply_add(device_);
   const bool unified = device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
+  unified_memory_ = unified;
   map_results_ = map_results && unified;
   huge_pages_ = is_cpu_type(device_.type) && unified;
   context_ = cl::Context(device_.device);
@@ -86,32 +51,23 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   const std::vector<int> candidates = lane_candidates(requested, device_, bvh != nullptr);
   // (the first candidate's options also check them: fp64, lanes, before any upload)
   config_.lanes = candidates.front();
-  const std::string first_options = build_options(config_, scene, depth, device_.fp64);
+  features_ = kernel_features(scene, depth);
+  const std::string first_options = scene_options();
   if (candidates.size() == 1) {
     use_program(first_options);
     check_local_size();
   }
   auto t0 = std::chrono::steady_clock::now();
-  // the triangles straight into their device buffer, a chunk at a time;
-  // their lo parts only for the variant that reads them (clrt_layout.h)
-  const size_t triangle_count = std::max<size_t>(1, scene.triangles.size());
-  const bool with_lo = CLRT_READS_TRIANGLE_LO(kernel_code(config_.precision));
-  triangles_ = cl::Buffer(context_, CL_MEM_READ_ONLY, triangle_count * sizeof(clrt_triangle));
-  triangles_lo_ = cl::Buffer(context_, CL_MEM_READ_ONLY, (with_lo ? triangle_count : 1) * sizeof(clrt_triangle_lo));
-  size_t triangles_written = 0;
-  const TriangleSink to_device = [&](const clrt_triangle* triangles, const clrt_triangle_lo* lo, size_t count) {
-    queue_.enqueueWriteBuffer(triangles_, CL_TRUE, triangles_written * sizeof(clrt_triangle),
-                              count * sizeof(clrt_triangle), triangles);
-    if (with_lo)
-      queue_.enqueueWriteBuffer(triangles_lo_, CL_TRUE, triangles_written * sizeof(clrt_triangle_lo),
-                                count * sizeof(clrt_triangle_lo), lo);
-    triangles_written += count;
-  };
+  TriangleUpload triangles(context_, queue_, scene.triangles.size(),
+                           CLRT_READS_TRIANGLE_LO(kernel_code(config_.precision)), unified_memory_, huge_pages_);
   // (in the hierarchy's order where the kernel walks one: clrt_layout.h)
   const bool walks = uses_bvh(config_.accel, bvh_primitive_count(scene), config_.precision);
   const std::vector<clrt_i32>* order = walks && bvh && !scene.triangles.empty() ? &bvh->triangle_order : nullptr;
   triangle_slots_ = upload(context_, queue_, order ? triangle_slots(*bvh) : std::vector<clrt_i32>{});
-  SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling, to_device, order);
+  SceneData data = pack_scene(scene, config_.precision, width, height, depth, sampling, triangles.output(), order);
+  triangles.finish();
+  triangles_ = triangles.triangles;
+  triangles_lo_ = triangles.triangles_lo;
   params_ = upload(context_, queue_, std::vector<clrt_params>{data.params});
   spheres_ = upload(context_, queue_, data.spheres);
   lights_ = upload(context_, queue_, data.lights);
@@ -130,7 +86,7 @@ void DeviceRenderer::prepare(const Scene& scene, int width, int height, int dept
   timings_.upload_ms = ms_since(t0);
   width_ = width;
   height_ = height;
-  if (candidates.size() > 1) choose_lanes(scene, depth, data, bvh);
+  if (candidates.size() > 1) choose_lanes(data, bvh);
 }
 
 void DeviceRenderer::use_program(const std::string& opts) {
@@ -175,16 +131,19 @@ void DeviceRenderer::use_program(const std::string& opts) {
   timings_.build_cached = timings_.build_cached && bs.cached;
 }
 
-void DeviceRenderer::choose_lanes(const Scene& scene, int depth, const SceneData& data, const Bvh* bvh) {
+std::string DeviceRenderer::scene_options() const {
+  return join_build_options(build_option_list(config_, features_, device_.fp64));
+}
+
+void DeviceRenderer::choose_lanes(const SceneData& data, const Bvh* bvh) {
   KernelConfig requested = config_;
   requested.lanes = requested_lanes_;
   const std::vector<int> candidates = lane_candidates(requested, device_, bvh != nullptr);
-  const std::string key =
-      lane_choice_key(device_, build_options(config_, scene, depth, device_.fp64), data, bvh ? &bvh->wide : nullptr);
+  const std::string key = lane_choice_key(device_, scene_options(), data, bvh ? &bvh->wide : nullptr);
   const int remembered = recall_lanes(key);
   if (remembered != 0) {
     config_.lanes = remembered;
-    use_program(build_options(config_, scene, depth, device_.fp64));
+    use_program(scene_options());
     check_local_size();
     return;
   }
@@ -206,7 +165,7 @@ void DeviceRenderer::choose_lanes(const Scene& scene, int depth, const SceneData
   }
   for (int lanes : candidates) {
     config_.lanes = lanes;
-    use_program(build_options(config_, scene, depth, device_.fp64));
+    use_program(scene_options());
     check_local_size();
     programs.push_back(built_);
     render_tile(0, 0, std::min(width_, 16), std::min(height_, 4), scratch);  // untimed first launch

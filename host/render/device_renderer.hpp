@@ -165,13 +165,16 @@ class DeviceRenderer {
   // (render/lane_choice.hpp): the one the process found fastest for this
   // work before, else the fastest in a timed probe of a few bands of rows.
   // The scene's buffers must be uploaded and width_/height_ set.
-  void choose_lanes(const Scene& scene, int depth, const SceneData& data, const Bvh* bvh);
+  void choose_lanes(const SceneData& data, const Bvh* bvh);
+  // The build options of config_ for the prepared scene (its features_).
+  std::string scene_options() const;
   // The kernel time of rendering the probe's bands into `scratch`.
   double probe_ms(Image& scratch);
 
   DeviceInfo device_;
-  KernelConfig config_;  // lanes resolved: the device's default, or per scene (prepare())
-  int requested_lanes_;  // config.lanes as given (0: chosen per scene, choose_lanes())
+  KernelConfig config_;      // lanes resolved: the device's default, or per scene (prepare())
+  int requested_lanes_;      // config.lanes as given (0: chosen per scene, choose_lanes())
+  KernelFeatures features_;  // the prepared scene's, found once (a pass over every primitive)
   LocalSize local_;
   cl::Context context_;
   cl::CommandQueue queue_;
@@ -180,8 +183,9 @@ class DeviceRenderer {
   std::string source_;
   cl::Buffer params_, spheres_, lights_, nodes_, primitives_, leaf_spheres_, planes_, triangles_, triangles_lo_,
       triangle_slots_, materials_;
-  bool map_results_ = false;  // asked for and CL_DEVICE_HOST_UNIFIED_MEMORY: mapped, not read
-  bool huge_pages_ = false;   // a CPU device with CL_DEVICE_HOST_UNIFIED_MEMORY: large scene buffers on 2 MiB pages
+  bool unified_memory_ = false;  // CL_DEVICE_HOST_UNIFIED_MEMORY: triangles packed into mapped buffers
+  bool map_results_ = false;     // asked for and CL_DEVICE_HOST_UNIFIED_MEMORY: mapped, not read
+  bool huge_pages_ = false;      // a CPU device with CL_DEVICE_HOST_UNIFIED_MEMORY: large scene buffers on 2 MiB pages
   bool overlap_ = true;
   bool events_plausible_ = true;
   ResultSlot slots_[2];

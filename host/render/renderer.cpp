@@ -3,13 +3,12 @@
 
 #include <algorithm>
 #include <chrono>
-#include <exception>
 #include <stdexcept>
-#include <thread>
 
 #include "render/scene_buffers.hpp"
 #include "util/doing.hpp"
 #include "util/error.hpp"
+#include "util/parallel.hpp"
 #include "util/timer.hpp"
 
 namespace clrt {
@@ -59,22 +58,11 @@ void Renderer::prepare(const Scene& scene, int width, int height, int depth, Sam
   // compiled kernel into the building thread's dynamic TLS, and with two
   // contexts LeakSanitizer's exit-time scan of the main thread's stale DTLS
   // crashes; docs/developer/sanitizers.md.)
-  std::vector<std::exception_ptr> errors(devices_.size());
-  std::vector<std::thread> threads;
-  auto prepare_device = [&](size_t i) {
-    try {
-      devices_[i]->prepare(scene, width, height, depth, sampling, bvh.get());
-    } catch (...) {
-      errors[i] = std::current_exception();
-    }
-  };
   if (devices_.size() == 1)
-    prepare_device(0);
+    devices_[0]->prepare(scene, width, height, depth, sampling, bvh.get());
   else
-    for (size_t i = 0; i < devices_.size(); ++i) threads.emplace_back(prepare_device, i);
-  for (auto& t : threads) t.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
+    run_on_threads(devices_.size(),
+                   [&](size_t i) { devices_[i]->prepare(scene, width, height, depth, sampling, bvh.get()); });
 
   stats_ = stats;
   stats_.build_cached = true;

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "render/conditioning.hpp"
+#include "render/pack_triangles.hpp"
 #include "scene/ray_tree.hpp"
 #include "util/content_hash.hpp"
 
@@ -57,17 +58,17 @@ constexpr int first_layout_gap() {
 static_assert(first_layout_gap() == -1,
               "CLRT_LAYOUT_FIELDS must name every member of the shared structs, in order, with no padding between");
 
-void split3(Vec3 v, float* hi, float* lo) {
-  split_hi_lo(v.x, hi[0], lo[0]);
-  split_hi_lo(v.y, hi[1], lo[1]);
-  split_hi_lo(v.z, hi[2], lo[2]);
-}
-
 }  // namespace
 
 void split_hi_lo(double value, float& hi, float& lo) {
   hi = static_cast<float>(value);
   lo = static_cast<float>(value - static_cast<double>(hi));
+}
+
+void split3(const Vec3& v, float* hi, float* lo) {
+  split_hi_lo(v.x, hi[0], lo[0]);
+  split_hi_lo(v.y, hi[1], lo[1]);
+  split_hi_lo(v.z, hi[2], lo[2]);
 }
 
 int kernel_light_code(LightType type) {
@@ -138,7 +139,7 @@ namespace {
 // Chapter 5's planes and triangles (shifted by `shift`) and their
 // materials into `d`; the triangles to `sink` if it is set, in `order` if
 // it is (pack_scene()).
-void pack_flat(const Scene& scene, const Vec3& shift, const TriangleSink& sink, const std::vector<clrt_i32>* order,
+void pack_flat(const Scene& scene, const Vec3& shift, const TriangleOutput& output, const std::vector<clrt_i32>* order,
                SceneData& d) {
   // Planes and triangles name their material by index; equal materials (a
   // mesh's faces) share one entry.
@@ -164,52 +165,34 @@ void pack_flat(const Scene& scene, const Vec3& shift, const TriangleSink& sink, 
     o.material = material(plane.material);
     d.planes.push_back(o);
   }
-  // in chunks: kept, or handed to the sink (and dropped) as each fills
-  ContentHash digest;
-  std::vector<clrt_triangle> chunk;
-  std::vector<clrt_triangle_lo> chunk_lo;
-  chunk.reserve(std::min(scene.triangles.size(), kTriangleChunk));
-  chunk_lo.reserve(chunk.capacity());
-  const auto flush = [&] {
-    digest.add(chunk);
-    digest.add(chunk_lo);
-    if (sink) {
-      sink(chunk.data(), chunk_lo.data(), chunk.size());
-    } else {
-      d.triangles.insert(d.triangles.end(), chunk.begin(), chunk.end());
-      d.triangles_lo.insert(d.triangles_lo.end(), chunk_lo.begin(), chunk_lo.end());
+  const size_t count = scene.triangles.size();
+  const std::vector<clrt_i32> entries = triangle_material_entries(scene, material);
+  std::vector<uint64_t> hashes;
+  if (output.triangles) {
+    pack_triangles(scene, shift, order, entries, 0, count, output.triangles, output.triangles_lo, hashes);
+  } else if (output.sink) {
+    // a chunk at a time, handed on and dropped
+    std::vector<clrt_triangle> chunk(std::min(count, kTriangleChunk));
+    std::vector<clrt_triangle_lo> chunk_lo(chunk.size());
+    for (size_t first = 0; first < count; first += kTriangleChunk) {
+      const size_t n = std::min(kTriangleChunk, count - first);
+      pack_triangles(scene, shift, order, entries, first, n, chunk.data(), chunk_lo.data(), hashes);
+      output.sink(chunk.data(), chunk_lo.data(), n);
     }
-    chunk.clear();
-    chunk_lo.clear();
-  };
-  if (!sink) {
-    d.triangles.reserve(scene.triangles.size());
-    d.triangles_lo.reserve(scene.triangles.size());
+  } else {
+    d.triangles.resize(count);
+    d.triangles_lo.resize(count);
+    pack_triangles(scene, shift, order, entries, 0, count, d.triangles.data(), d.triangles_lo.data(), hashes);
   }
-  if (order && order->size() != scene.triangles.size())
-    throw std::logic_error("pack_scene: a triangle order of another scene");
-  for (size_t k = 0; k < scene.triangles.size(); ++k) {
-    const size_t index = order ? size_t(order->at(k)) : k;
-    const Triangle& t = scene.triangles.at(index);
-    clrt_triangle o{};
-    clrt_triangle_lo lo{};
-    o.index = static_cast<clrt_i32>(index);
-    split3(t.v0 - shift, o.v0, lo.v0_lo);
-    split3(t.v1 - shift, o.v1, lo.v1_lo);
-    split3(t.v2 - shift, o.v2, lo.v2_lo);
-    o.material = material(t.material);
-    chunk.push_back(o);
-    chunk_lo.push_back(lo);
-    if (chunk.size() == kTriangleChunk) flush();
-  }
-  if (!chunk.empty()) flush();
+  ContentHash digest;
+  for (uint64_t hash : hashes) digest.add(&hash, sizeof hash);
   d.triangles_digest = digest.value;
 }
 
 }  // namespace
 
 SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling,
-                     const TriangleSink& sink, const std::vector<clrt_i32>* triangle_order) {
+                     const TriangleOutput& triangles, const std::vector<clrt_i32>* triangle_order) {
   SceneData d;
   const Vec3 shift = packing_origin(scene, precision);
   clrt_params& p = d.params;
@@ -270,7 +253,7 @@ SceneData pack_scene(const Scene& scene, Precision precision, int width, int hei
   }
   p.n_planes = static_cast<clrt_i32>(scene.planes.size());
   p.n_triangles = static_cast<clrt_i32>(scene.triangles.size());
-  pack_flat(scene, shift, sink, triangle_order, d);
+  pack_flat(scene, shift, triangles, triangle_order, d);
   return d;
 }
 

@@ -24,12 +24,18 @@ struct SceneData {
 };
 
 // Where pack_scene() puts the packed triangles: SceneData::triangles when
-// empty; else this sink gets them in order, kTriangleChunk at most a call,
-// so that a caller can write them to a device without holding them all
-// (the upload of 4 million held them twice: docs/results/meshes.md).
+// this is empty; else straight into arrays of every triangle (a mapped
+// device buffer, filled on every core), or a chunk at a time to a sink, so
+// that a caller can write them to a device without holding them all (the
+// upload of 4 million held them twice: docs/results/meshes.md).
 using TriangleSink =
     std::function<void(const clrt_triangle* triangles, const clrt_triangle_lo* triangles_lo, size_t count)>;
 constexpr size_t kTriangleChunk = size_t(1) << 16;
+struct TriangleOutput {
+  TriangleSink sink;                         // kTriangleChunk at most a call, in order; or
+  clrt_triangle* triangles = nullptr;        // one per scene triangle, and
+  clrt_triangle_lo* triangles_lo = nullptr;  // their lo parts (null: not kept)
+};
 
 // Robust and fast modes are camera-relative: the host subtracts the camera
 // position in double before rounding to float, so geometry near the camera
@@ -46,6 +52,8 @@ int kernel_light_code(LightType type);
 // A double as a float `hi` (the nearest float) plus a float `lo` (what hi
 // misses, rounded): hi + lo carries ~48 bits, and lo is 0 for a float.
 void split_hi_lo(double value, float& hi, float& lo);
+// The same for each coordinate: hi[0..2], lo[0..2].
+void split3(const Vec3& v, float* hi, float* lo);
 
 // Chapter 5's media (refraction): the refractive index around sphere
 // `index` (that of the smallest transparent sphere containing it whole, else
@@ -58,7 +66,7 @@ double camera_medium(const Scene& scene);
 // `triangle_order` (a Bvh's): the triangles packed in that order of their
 // scene indices, which must name each once (default: the scene's order).
 SceneData pack_scene(const Scene& scene, Precision precision, int width, int height, int depth, Sampling sampling = {},
-                     const TriangleSink& sink = {}, const std::vector<clrt_i32>* triangle_order = nullptr);
+                     const TriangleOutput& triangles = {}, const std::vector<clrt_i32>* triangle_order = nullptr);
 
 // The hierarchy's copies of the packed spheres for its leaves
 // (clrt_leaf_sphere): one per entry of `primitives` (a Bvh's), in its order,

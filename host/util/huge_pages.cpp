@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <thread>
-#include <vector>
+
+#include "util/parallel.hpp"
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -33,14 +33,11 @@ size_t advise_huge_pages(void* p, size_t bytes) {
 size_t place_on_huge_pages(void* p, size_t bytes) {
   const size_t advised = advise_huge_pages(p, bytes);
   if (advised == 0) return 0;
-  const size_t workers = std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> threads;
   char* c = static_cast<char*>(p);
-  for (size_t w = 0; w < workers; ++w)
-    threads.emplace_back([=] {
-      for (size_t at = w * kHugePageBytes; at < bytes; at += workers * kHugePageBytes) c[at] = 0;
-    });
-  for (std::thread& t : threads) t.join();
+  const size_t pages = (bytes + kHugePageBytes - 1) / kHugePageBytes;
+  parallel_chunks(pages, 1, [c](size_t begin, size_t end) {
+    for (size_t page = begin; page < end; ++page) c[page * kHugePageBytes] = 0;
+  });
   return advised;
 }
 

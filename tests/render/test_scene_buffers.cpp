@@ -112,11 +112,11 @@ TEST_CASE("pack_scene: a triangle sink gets every triangle in order, in chunks, 
   std::vector<clrt_triangle_lo> given_lo;
   std::vector<size_t> chunks;
   const SceneData sunk = pack_scene(scene, Precision::Robust, 64, 48, 3, {},
-                                    [&](const clrt_triangle* t, const clrt_triangle_lo* lo, size_t n) {
+                                    {[&](const clrt_triangle* t, const clrt_triangle_lo* lo, size_t n) {
                                       chunks.push_back(n);
                                       given.insert(given.end(), t, t + n);
                                       given_lo.insert(given_lo.end(), lo, lo + n);
-                                    });
+                                    }});
   CHECK(sunk.triangles.empty());
   CHECK(chunks == std::vector<size_t>{kTriangleChunk, kTriangleChunk, 123});
   REQUIRE(given.size() == count);
@@ -130,6 +130,27 @@ TEST_CASE("pack_scene: a triangle sink gets every triangle in order, in chunks, 
   CHECK(kept.triangles[5].index == 5);
   CHECK(sunk.triangles_digest == kept.triangles_digest);
   CHECK(sunk.materials.size() == kept.materials.size());
+  // straight into arrays (a mapped device buffer): the same triangles and
+  // digest, also where the lo parts are not kept
+  std::vector<clrt_triangle> placed(count);
+  std::vector<clrt_triangle_lo> placed_lo(count);
+  TriangleOutput in_place;
+  in_place.triangles = placed.data();
+  in_place.triangles_lo = placed_lo.data();
+  const SceneData direct = pack_scene(scene, Precision::Robust, 64, 48, 3, {}, in_place);
+  CHECK(direct.triangles.empty());
+  CHECK(std::memcmp(placed.data(), kept.triangles.data(), count * sizeof(clrt_triangle)) == 0);
+  CHECK(std::memcmp(placed_lo.data(), kept.triangles_lo.data(), count * sizeof(clrt_triangle_lo)) == 0);
+  CHECK(direct.triangles_digest == kept.triangles_digest);
+  in_place.triangles_lo = nullptr;
+  std::fill(placed.begin(), placed.end(), clrt_triangle{});
+  CHECK(pack_scene(scene, Precision::Robust, 64, 48, 3, {}, in_place).triangles_digest == kept.triangles_digest);
+  CHECK(std::memcmp(placed.data(), kept.triangles.data(), count * sizeof(clrt_triangle)) == 0);
+  // two materials, numbered in order of first use
+  REQUIRE(kept.materials.size() == 2);
+  CHECK(kept.materials[0].color[0] == 10.0f);
+  CHECK(kept.triangles[1].material == 1);
+  CHECK(kept.triangles[count - 1].material == (count - 1) % 2);
   // the digest sees a change in any triangle
   scene.triangles[count - 1].v2.z += 1;
   CHECK(pack_scene(scene, Precision::Robust, 64, 48, 3).triangles_digest != kept.triangles_digest);
