@@ -6,13 +6,10 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <cstddef>
-#include <cstring>
 #include <future>
 #include <limits>
 #include <stdexcept>
 #include <thread>
-#include <type_traits>
 #include <utility>
 
 #include "render/wide_bvh.hpp"
@@ -125,34 +122,6 @@ struct Bounds {
   }
 };
 
-// A bin's box as four float lanes (the fourth unused), so that growing it
-// by an item is one vector min and one vector max.
-struct alignas(16) BinBox {
-  float lower[4] = {kInfinityF, kInfinityF, kInfinityF, kInfinityF};
-  float upper[4] = {-kInfinityF, -kInfinityF, -kInfinityF, -kInfinityF};
-
-  void grow(const Item& item) {
-    // 16 bytes from each corner: x, y, z and the next member's first float
-    const auto* bytes = reinterpret_cast<const unsigned char*>(&item);
-    float low[4], high[4];
-    std::memcpy(low, bytes + offsetof(Item, lower), sizeof low);
-    std::memcpy(high, bytes + offsetof(Item, upper), sizeof high);
-    for (int k = 0; k < 4; ++k) {
-      lower[k] = std::min(lower[k], low[k]);
-      upper[k] = std::max(upper[k], high[k]);
-    }
-  }
-  FloatBox merged(const BinBox& other) const {
-    FloatBox box;
-    for (int a = 0; a < 3; ++a) {
-      box.lower[a] = std::min(lower[a], other.lower[a]);
-      box.upper[a] = std::max(upper[a], other.upper[a]);
-    }
-    return box;
-  }
-};
-static_assert(std::is_standard_layout_v<Item> && offsetof(Item, upper) + 16 <= sizeof(Item), "BinBox reads 16 bytes");
-
 // The SAH's bins along one axis of a node's centroid box.
 struct Binning {
   int axis = 0;
@@ -253,27 +222,16 @@ class Builder {
     // Every axis binned in one pass over the items.
     std::array<Binning, 3> binning;
     for (int a = 0; a < 3; ++a) binning[a] = Binning(bounds.centroids, a);
-    // (two sets of bins, for the even and the odd items: consecutive items
-    // often fall in the same bin, and one set would make each update wait
-    // for the last one's store)
-    std::array<std::array<std::array<BinBox, kBvhBins>, 3>, 2> bin_boxes;
-    std::array<std::array<std::array<size_t, kBvhBins>, 3>, 2> bin_counts{};
-    for (size_t i = begin; i < end; ++i) {
-      const Item& item = items_[i];
-      const size_t set = i & 1;
-      for (int a = 0; a < 3; ++a) {
-        const int b = binning[a].bin(item.centroid[a]);
-        bin_boxes[set][a][b].grow(item);
-        ++bin_counts[set][a][b];
-      }
-    }
     std::array<std::array<FloatBox, kBvhBins>, 3> boxes;
     std::array<std::array<size_t, kBvhBins>, 3> counts{};
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < kBvhBins; ++b) {
-        boxes[a][b] = bin_boxes[0][a][b].merged(bin_boxes[1][a][b]);
-        counts[a][b] = bin_counts[0][a][b] + bin_counts[1][a][b];
+    for (size_t i = begin; i < end; ++i) {
+      const Item& item = items_[i];
+      for (int a = 0; a < 3; ++a) {
+        const int b = binning[a].bin(item.centroid[a]);
+        boxes[a][b].grow(item.lower, item.upper);
+        ++counts[a][b];
       }
+    }
     double best_cost = kInfinity;
     int best_axis = -1, best_bin = 0;
     for (int a = 0; a < 3; ++a) {
