@@ -144,8 +144,12 @@ std::string join_build_options(const std::vector<std::string>& options) {
   return joined;
 }
 
+std::string build_options(const KernelConfig& cfg, const KernelFeatures& features, bool device_has_fp64) {
+  return join_build_options(build_option_list(cfg, features, device_has_fp64));
+}
+
 std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth, bool device_has_fp64) {
-  return join_build_options(build_option_list(cfg, kernel_features(scene, depth), device_has_fp64));
+  return build_options(cfg, kernel_features(scene, depth), device_has_fp64);
 }
 
 }  // namespace clrt

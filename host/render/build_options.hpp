@@ -83,7 +83,9 @@ std::vector<std::string> build_option_list(const KernelConfig& cfg, const Kernel
 // logged, and what the program cache key holds.
 std::string join_build_options(const std::vector<std::string>& options);
 
-// join_build_options(build_option_list(cfg, kernel_features(scene, depth), device_has_fp64)).
+// join_build_options(build_option_list(cfg, features, device_has_fp64)).
+std::string build_options(const KernelConfig& cfg, const KernelFeatures& features, bool device_has_fp64);
+// The same with the scene's features (kernel_features(scene, depth)).
 std::string build_options(const KernelConfig& cfg, const Scene& scene, int depth, bool device_has_fp64);
 
 }  // namespace clrt

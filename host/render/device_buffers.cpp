@@ -40,14 +40,16 @@ TriangleUpload::TriangleUpload(const cl::Context& ctx, const cl::CommandQueue& q
   triangles = cl::Buffer(ctx, CL_MEM_READ_ONLY | in_place, allocated * sizeof(clrt_triangle));
   triangles_lo = cl::Buffer(ctx, CL_MEM_READ_ONLY | in_place, (with_lo ? allocated : 1) * sizeof(clrt_triangle_lo));
   if (unified_memory && count > 0) {
-    mapped_.emplace(q, triangles, count * sizeof(clrt_triangle));
-    output_.triangles = static_cast<clrt_triangle*>(mapped_->data());
-    if (huge_pages) advise_huge_pages(mapped_->data(), count * sizeof(clrt_triangle));
-    if (with_lo) {
-      mapped_lo_.emplace(q, triangles_lo, count * sizeof(clrt_triangle_lo));
-      output_.triangles_lo = static_cast<clrt_triangle_lo*>(mapped_lo_->data());
-      if (huge_pages) advise_huge_pages(mapped_lo_->data(), count * sizeof(clrt_triangle_lo));
-    }
+    // mapped for the packing threads, on 2 MiB pages where asked
+    auto map = [&](std::optional<MappedForWrite>& mapped, const cl::Buffer& buffer, size_t bytes) {
+      mapped.emplace(q, buffer, bytes);
+      if (huge_pages) advise_huge_pages(mapped->data(), bytes);
+      return mapped->data();
+    };
+    output_.triangles = static_cast<clrt_triangle*>(map(mapped_, triangles, count * sizeof(clrt_triangle)));
+    if (with_lo)
+      output_.triangles_lo =
+          static_cast<clrt_triangle_lo*>(map(mapped_lo_, triangles_lo, count * sizeof(clrt_triangle_lo)));
     return;
   }
   output_.sink = [this](const clrt_triangle* hi, const clrt_triangle_lo* lo, size_t n) {

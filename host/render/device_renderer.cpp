@@ -24,10 +24,9 @@ DeviceRenderer::DeviceRenderer(const DeviceInfo& device, KernelConfig config, Lo
   if (config_.lanes == 0) config_.lanes = default_lanes(config_, device_);  // until prepare() chooses
   config_.loop_limit_probe = config_.loop_limit_probe || ends_long_loops(device_);
   if (!config_.fast_fma) config_.fast_fma = fuses_multiply_add(device_);
-  const bool unified = device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
-  unified_memory_ = unified;
-  map_results_ = map_results && unified;
-  huge_pages_ = is_cpu_type(device_.type) && unified;
+  unified_memory_ = device_.device.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
+  map_results_ = map_results && unified_memory_;
+  huge_pages_ = is_cpu_type(device_.type) && unified_memory_;
   context_ = cl::Context(device_.device);
   queue_ = cl::CommandQueue(context_, device_.device, CL_QUEUE_PROFILING_ENABLE);
   if (!map_results_) transfer_queue_ = cl::CommandQueue(context_, device_.device);
@@ -132,7 +131,7 @@ void DeviceRenderer::use_program(const std::string& opts) {
 }
 
 std::string DeviceRenderer::scene_options() const {
-  return join_build_options(build_option_list(config_, features_, device_.fp64));
+  return build_options(config_, features_, device_.fp64);
 }
 
 void DeviceRenderer::choose_lanes(const SceneData& data, const Bvh* bvh) {

@@ -18,14 +18,13 @@ namespace {
 // Triangles per block of the materials' numbering.
 constexpr size_t kMaterialBlock = size_t(1) << 16;
 
-using MaterialKey = std::tuple<double, double, double, double, double>;
-MaterialKey material_key(const Material& m) {
-  return std::make_tuple(m.color.x, m.color.y, m.color.z, m.specular, m.reflective);
-}
-
 static_assert(kTriangleChunk % kTriangleHashBlock == 0, "a chunk is whole hash blocks");
 
 }  // namespace
+
+MaterialKey material_key(const Material& m) {
+  return std::make_tuple(m.color.x, m.color.y, m.color.z, m.specular, m.reflective);
+}
 
 std::vector<clrt_i32> triangle_material_entries(const Scene& scene,
                                                 const std::function<clrt_i32(const Material&)>& entry_of) {

@@ -6,12 +6,18 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <tuple>
 #include <vector>
 
 #include "clrt_layout.h"
 #include "scene/scene.hpp"
 
 namespace clrt {
+
+// What the kernel reads of a material, as a key: materials with equal keys
+// share one packed entry (clrt_material).
+using MaterialKey = std::tuple<double, double, double, double, double>;
+MaterialKey material_key(const Material& m);
 
 // Each scene triangle's material entry: entry_of(m) for its material m,
 // called once per material on the calling thread in the order of first use

@@ -7,7 +7,6 @@
 #include <iterator>
 #include <map>
 #include <stdexcept>
-#include <tuple>
 
 #include "render/conditioning.hpp"
 #include "render/pack_triangles.hpp"
@@ -137,16 +136,15 @@ double camera_medium(const Scene& scene) {
 namespace {
 
 // Chapter 5's planes and triangles (shifted by `shift`) and their
-// materials into `d`; the triangles to `sink` if it is set, in `order` if
-// it is (pack_scene()).
+// materials into `d`; the triangles where `output` says, in `order` if it
+// is set (pack_scene()).
 void pack_flat(const Scene& scene, const Vec3& shift, const TriangleOutput& output, const std::vector<clrt_i32>* order,
                SceneData& d) {
   // Planes and triangles name their material by index; equal materials (a
   // mesh's faces) share one entry.
-  std::map<std::tuple<double, double, double, double, double>, clrt_i32> material_index;
+  std::map<MaterialKey, clrt_i32> material_index;
   auto material = [&](const Material& m) {
-    const auto key = std::make_tuple(m.color.x, m.color.y, m.color.z, m.specular, m.reflective);
-    auto [at, added] = material_index.emplace(key, static_cast<clrt_i32>(d.materials.size()));
+    auto [at, added] = material_index.emplace(material_key(m), static_cast<clrt_i32>(d.materials.size()));
     if (added) {
       clrt_material o{};
       o.color[0] = static_cast<float>(m.color.x);
