@@ -60,4 +60,11 @@ int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::
   return render_pixels(w, scene, width, height, depth, rgba8);
 }
 
+void omp_warm_threads() {
+  int threads = 0;
+#pragma omp parallel reduction(+ : threads)
+  threads += 1;
+  (void)threads;
+}
+
 }  // namespace clrt_bench

@@ -18,4 +18,10 @@ int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::
 // kernel writes for 8-bit outputs).
 int omp_render(const clrt::Scene& scene, int width, int height, int depth, std::vector<uint8_t>& rgba8);
 
+// Wakes the OpenMP threads (an empty parallel region): a tracer's frame
+// then starts as in frames rendered back to back, its threads still
+// spinning from the last (eval/bench.cpp times frames of several tracers
+// in turn, with pauses between them).
+void omp_warm_threads();
+
 }  // namespace clrt_bench

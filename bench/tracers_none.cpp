@@ -24,6 +24,9 @@ int omp_render(const clrt::Scene&, int, int, int, std::vector<float>&) {
 int omp_render(const clrt::Scene&, int, int, int, std::vector<uint8_t>&) {
   no_tracers();
 }
+void omp_warm_threads() {
+  no_tracers();
+}
 int embree_render(const clrt::Scene&, int, int, int, std::vector<float>&, EmbreeBuildInfo*, EmbreeSpheres) {
   no_tracers();
 }

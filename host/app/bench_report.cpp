@@ -13,6 +13,8 @@ namespace clrt {
 
 nlohmann::ordered_json bench_json(const BenchResult& r) {
   const char* pocl_cache = std::getenv("POCL_KERNEL_CACHE");
+  // (the user's, or clrt's own where it pinned PoCL's workers: cl/pocl_workers.hpp)
+  const char* pocl_affinity = std::getenv("POCL_AFFINITY");
   nlohmann::ordered_json peaks = nlohmann::ordered_json::array();
   for (const auto& p : r.peaks) {
     nlohmann::ordered_json j = {{"measured", p.measured}};
@@ -43,6 +45,7 @@ nlohmann::ordered_json bench_json(const BenchResult& r) {
       {"build_warm_cached", r.build_warm_cached},
       {"build_warm_driver_cached", r.build_warm_driver_cached},
       {"pocl_kernel_cache", pocl_cache ? pocl_cache : "default"},
+      {"pocl_affinity", pocl_affinity ? pocl_affinity : "unset"},
       {"upload", stats_json(r.upload, "ms")},
       {"upload_ms", r.upload.median},
       {"first_launch_ms", r.first_launch_ms},
@@ -94,13 +97,13 @@ nlohmann::ordered_json bench_json(const BenchResult& r) {
       {"opencl_speedup_vs_embree", r.speedup_vs_embree.median},
       {"embree_vs_omp_differ",
        r.embree_vs_omp_differ >= 0 ? nlohmann::ordered_json(r.embree_vs_omp_differ) : nlohmann::ordered_json()},
-      {"embree_vs_omp_max_levels", r.embree_vs_omp_max_levels >= 0 ? nlohmann::ordered_json(r.embree_vs_omp_max_levels)
-                                                                   : nlohmann::ordered_json()},
+      {"embree_vs_omp_max_levels",
+       r.embree_vs_omp_max_levels >= 0 ? nlohmann::ordered_json(r.embree_vs_omp_max_levels) : nlohmann::ordered_json()},
       {"omp_not_run", r.omp_not_run},
       {"embree_vs_clrt_differ",
        r.embree_vs_clrt_differ >= 0 ? nlohmann::ordered_json(r.embree_vs_clrt_differ) : nlohmann::ordered_json()},
-      {"embree_vs_clrt_max_levels", r.embree_vs_clrt_max_levels >= 0
-                                        ? nlohmann::ordered_json(r.embree_vs_clrt_max_levels)
+      {"embree_vs_clrt_max_levels",
+       r.embree_vs_clrt_max_levels >= 0 ? nlohmann::ordered_json(r.embree_vs_clrt_max_levels)
                                         : nlohmann::ordered_json()}});
   return out;
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cl/pocl_workers.hpp"
 #include "util/error.hpp"
 #include "util/log.hpp"
 
@@ -78,6 +79,7 @@ std::string cache_home_hint() {
 }  // namespace
 
 std::vector<DeviceInfo> list_devices() {
+  pin_pocl_workers_by_default();  // (PoCL reads it when it starts its workers, at the first call)
   std::vector<cl::Platform> platforms;
   try {
     cl::Platform::get(&platforms);

@@ -4,9 +4,11 @@
 #include "eval/bench.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <functional>
 #include <string>
+#include <thread>
 
 #include "cl/launch_timing.hpp"
 #include "cl/program.hpp"
@@ -122,6 +124,9 @@ void time_builds(const Scene& scene, const std::vector<DeviceInfo>& devs, const 
   }
 }
 
+// The pause before a clrt frame that follows the other tracers' frames.
+constexpr std::chrono::milliseconds kTracerSettle{30};
+
 // The timed rounds on `cl`, with the OpenMP and Embree frames beside
 // clrt's when `tracers`.
 void time_rounds(const Scene& scene, const RenderSettings& settings, const BenchSettings& s, bool tracers, Renderer& cl,
@@ -149,8 +154,17 @@ void time_rounds(const Scene& scene, const RenderSettings& settings, const Bench
   if (omp) r.omp_threads = omp_frame();  // warm-up
   if (s.embree && tracers) r.embree_threads = embree_frame();
   std::vector<double> frames, downloads, omp_ms, frame_ratio, kernel_ratio, embree_ms, embree_build, embree_ratio;
+  // Each tracer's frame as in frames rendered back to back by it alone:
+  // libgomp's idle threads spin on after a parallel region (GOMP_SPINCOUNT,
+  // 300 000 pauses: milliseconds) and would take a core from clrt's next
+  // kernel, so clrt's frame waits kTracerSettle after the others' (the demo's
+  // kernel: 4.9-7.9 ms without, 5.2-6.0 with, docs/results/wide-hierarchy.md
+  // "Short frames on one core"); the OpenMP threads are woken just before
+  // the OpenMP and Embree frames, as their own last frame would leave them.
+  const bool other_tracers = omp || (s.embree && tracers);
   for (int i = 0; i < r.repeat; ++i) {
     step("round " + std::to_string(i + 1) + " of " + std::to_string(r.repeat));
+    if (other_tracers) std::this_thread::sleep_for(kTracerSettle);
     cl.render_into(r.image);  // like the OpenMP tracer's, the image's memory is reused
     const FrameStats& frame = cl.stats();
     r.kernel_ms.push_back(frame.kernel_ms);
@@ -159,6 +173,7 @@ void time_rounds(const Scene& scene, const RenderSettings& settings, const Bench
     r.launches += frame.launches;
     r.host_timed_launches += frame.host_timed_launches;
     if (omp) {
+      clrt_bench::omp_warm_threads();
       const auto t1 = Clock::now();
       r.omp_threads = omp_frame();
       omp_ms.push_back(ms_since(t1));
@@ -166,6 +181,7 @@ void time_rounds(const Scene& scene, const RenderSettings& settings, const Bench
       if (r.kernel_ms.back() > 0) kernel_ratio.push_back(omp_ms.back() / r.kernel_ms.back());
     }
     if (s.embree && tracers) {
+      clrt_bench::omp_warm_threads();
       r.embree_threads = embree_frame();
       embree_ms.push_back(embree_info.render_ms);
       embree_build.push_back(embree_info.build_ms);
