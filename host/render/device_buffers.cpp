@@ -24,7 +24,7 @@ void MappedForWrite::unmap() {
 }
 
 cl::Buffer scene_buffer(const cl::Context& ctx, const cl::CommandQueue& q, size_t bytes, bool huge_pages) {
-  if (!huge_pages || bytes < 4 * kHugePageBytes) return cl::Buffer(ctx, CL_MEM_READ_ONLY, bytes);
+  if (!huge_pages || !worth_huge_pages(bytes)) return cl::Buffer(ctx, CL_MEM_READ_ONLY, bytes);
   cl::Buffer b(ctx, CL_MEM_READ_ONLY | CL_MEM_ALLOC_HOST_PTR, bytes);
   MappedForWrite mapped(q, b, bytes);
   place_on_huge_pages(mapped.data(), bytes);
@@ -40,10 +40,10 @@ TriangleUpload::TriangleUpload(const cl::Context& ctx, const cl::CommandQueue& q
   triangles = cl::Buffer(ctx, CL_MEM_READ_ONLY | in_place, allocated * sizeof(clrt_triangle));
   triangles_lo = cl::Buffer(ctx, CL_MEM_READ_ONLY | in_place, (with_lo ? allocated : 1) * sizeof(clrt_triangle_lo));
   if (unified_memory && count > 0) {
-    // mapped for the packing threads, on 2 MiB pages where asked
+    // mapped for the packing threads, on 2 MiB pages where asked and worth it
     auto map = [&](std::optional<MappedForWrite>& mapped, const cl::Buffer& buffer, size_t bytes) {
       mapped.emplace(q, buffer, bytes);
-      if (huge_pages) advise_huge_pages(mapped->data(), bytes);
+      if (huge_pages && worth_huge_pages(bytes)) advise_huge_pages(mapped->data(), bytes);
       return mapped->data();
     };
     output_.triangles = static_cast<clrt_triangle*>(map(mapped_, triangles, count * sizeof(clrt_triangle)));

@@ -66,7 +66,7 @@ void pack_triangles(const Scene& scene, const Vec3& shift, const std::vector<clr
   if (first % kTriangleHashBlock != 0 || first > scene.triangles.size() || count > scene.triangles.size() - first)
     throw std::logic_error("pack_triangles: a range outside the scene's triangles");
   if (order && order->size() != scene.triangles.size())
-    throw std::logic_error("pack_scene: a triangle order of another scene");
+    throw std::logic_error("pack_triangles: a triangle order of another scene");
   const size_t blocks = (count + kTriangleHashBlock - 1) / kTriangleHashBlock;
   const size_t hashed = hashes.size();
   hashes.resize(hashed + blocks);

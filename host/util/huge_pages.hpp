@@ -8,6 +8,14 @@ namespace clrt {
 
 constexpr size_t kHugePageBytes = size_t(2) << 20;
 
+// Whether a scene buffer of `bytes` is worth 2 MiB pages: from 8 MiB (four
+// of them); a smaller one is read from few 4 KiB pages' TLB entries anyway.
+// The one rule for the hierarchy's buffers and the triangles'
+// (render/device_buffers.hpp).
+constexpr bool worth_huge_pages(size_t bytes) {
+  return bytes >= 4 * kHugePageBytes;
+}
+
 // Advises the whole 2 MiB pages inside [p, p + bytes) before they are first
 // written. A hint: where the system refuses it or has no such pages, nothing
 // changes. Returns the bytes advised.
