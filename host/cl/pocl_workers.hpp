@@ -5,9 +5,9 @@
 // together when the kernel is queued. On a 2-core virtual machine Linux
 // often woke both onto the core that woke them and left them there for the
 // whole launch: a 4.3 ms frame of the demo took 8.7 ms (one core's worth)
-// in about half the rounds, and the lanes probe, which times short bands,
-// read that noise (docs/results/wide-hierarchy.md, "Short frames on one
-// core"). PoCL's own switch, POCL_AFFINITY=1, pins worker i to CPU i;
+// in about half the rounds (docs/results/wide-hierarchy.md, "Short frames
+// on one core"; the lanes probe, which times short bands, is exposed to the
+// same). PoCL's own switch, POCL_AFFINITY=1, pins worker i to CPU i;
 // clrt sets it before the first OpenCL call where that is safe.
 #pragma once
 #include <vector>

@@ -160,7 +160,8 @@ void time_rounds(const Scene& scene, const RenderSettings& settings, const Bench
   // kernel, so clrt's frame waits kTracerSettle after the others' (the demo's
   // kernel: 4.9-7.9 ms without, 5.2-6.0 with, docs/results/wide-hierarchy.md
   // "Short frames on one core"); the OpenMP threads are woken just before
-  // the OpenMP and Embree frames, as their own last frame would leave them.
+  // the OpenMP frame and the Embree render (after its build), as their own
+  // last frame would leave them.
   const bool other_tracers = omp || (s.embree && tracers);
   for (int i = 0; i < r.repeat; ++i) {
     step("round " + std::to_string(i + 1) + " of " + std::to_string(r.repeat));
@@ -181,8 +182,7 @@ void time_rounds(const Scene& scene, const RenderSettings& settings, const Bench
       if (r.kernel_ms.back() > 0) kernel_ratio.push_back(omp_ms.back() / r.kernel_ms.back());
     }
     if (s.embree && tracers) {
-      clrt_bench::omp_warm_threads();
-      r.embree_threads = embree_frame();
+      r.embree_threads = embree_frame();  // (it wakes the OpenMP threads after its build)
       embree_ms.push_back(embree_info.render_ms);
       embree_build.push_back(embree_info.build_ms);
       if (frames.back() > 0) embree_ratio.push_back(embree_ms.back() / frames.back());
