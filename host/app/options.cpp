@@ -131,8 +131,8 @@ void KernelOptions::add(CLI::App* cmd, bool with_variant, bool with_specialize) 
     cmd->add_option(
            "--lanes", lanes,
            "Pixels per work-item (SIMD lanes): 1, 4, 8, 16; unset: 16 on CPUs with 16-wide floats, else 8, "
-           "for specialized float builds on CPUs (where a hierarchy is walked: that or 1, whichever a short timed "
-           "probe on the scene finds faster); 1 on GPUs, on llvmpipe (rusticl), for generic and fp64 builds")
+           "for specialized float builds on CPUs (where a hierarchy is walked: that, 8 or 1, whichever a short "
+           "timed probe on the scene finds fastest); 1 on GPUs, on llvmpipe (rusticl), for generic and fp64 builds")
         ->group(kDeveloperGroup);
   }
   if (with_specialize)

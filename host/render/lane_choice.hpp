@@ -22,9 +22,10 @@
 namespace clrt {
 
 // The lane counts to choose from: cfg.lanes when set; else default_lanes(),
-// followed by 1 (one ray per work-item) where the kernel walks a hierarchy
-// with blocks of lanes (`bvh` and default_lanes() > 1) unless
-// cfg.probe_lanes is off. One candidate: no probe.
+// followed, where the kernel walks a hierarchy with blocks of lanes (`bvh`
+// and default_lanes() > 1) unless cfg.probe_lanes is off, by 8 (4x2 blocks,
+// where the default is 16: faster on large scenes at 640x360, 3-7%) and 1
+// (one ray per work-item). One candidate: no probe.
 std::vector<int> lane_candidates(const KernelConfig& cfg, const DeviceInfo& dev, bool bvh);
 
 // The rows a probe renders of a `height`-row image: kProbeBands bands of
@@ -51,10 +52,16 @@ std::vector<RowBand> probe_bands(int height);
 // spheres at 640x360 and the probe picked the 1.4x slower mode in 2 of 6
 // runs; with four it picked the faster in 5 of 5 there, but the slower
 // (one ray per work-item, 1.2x) in 7 of 50 runs on the million-triangle
-// mesh, and with eight in none of 50 (docs/results/wide-hierarchy.md). The
-// rounds cost the work of 1.2-1.4 frames (both candidates, 7-9% of the rows
-// each round), once per scene and device in a process.
-constexpr int kProbeRounds = 8;
+// mesh, and with eight in none of 50 (docs/results/wide-hierarchy.md).
+// That was before PoCL's workers were pinned (cl/pocl_workers.hpp: a short
+// launch took twice its time in about half the rounds); since, five rounds
+// of three candidates picked the faster blocks of 8 in 52 of 52 runs on the
+// mesh and blocks of 16 in 10 of 10 on 4 000 triangles, for about the work
+// eight rounds of two took (1.2-1.4 frames, once per scene and device in a
+// process; the third program's build and first launch add 4-6% to a
+// one-frame `clrt render` of 10^5 spheres or the mesh at 640x360).
+// ("Blocks of 8 as a candidate", docs/results/wide-hierarchy.md.)
+constexpr int kProbeRounds = 5;
 
 // What identifies a probe's answer: the device, the program's options (the
 // scene's features, precision and outputs), and a hash of everything the

@@ -13,6 +13,7 @@
 #include "cli_run.hpp"
 #include "eval/stability.hpp"
 #include "render/bvh.hpp"
+#include "render/lane_choice.hpp"
 #include "render/precision_support.hpp"
 #include "render/renderer.hpp"
 #include "scene/mesh_grid.hpp"
@@ -422,11 +423,14 @@ TEST_CASE("the lanes probe picks a candidate, and the image is every candidate's
   probed.prepare(scene, 64, 48, 3);
   const Image image = probed.render();
   const std::string chosen = probed.options();
-  const int blocks = default_lanes(config, device);
-  // the chosen program is one of the candidates'
-  const bool one_ray = chosen.find("-DCLRT_LANES=") == std::string::npos;
-  CHECK((one_ray || chosen.find("-DCLRT_LANES=" + std::to_string(blocks)) != std::string::npos));
-  for (int lanes : {1, blocks}) {
+  const std::vector<int> candidates = lane_candidates(config, device, true);
+  // the chosen program is one of the candidates' (one ray: no -DCLRT_LANES)
+  bool among = false;
+  for (int lanes : candidates)
+    among |= lanes == 1 ? chosen.find("-DCLRT_LANES=") == std::string::npos
+                        : chosen.find("-DCLRT_LANES=" + std::to_string(lanes) + " ") != std::string::npos;
+  CHECK(among);
+  for (int lanes : candidates) {
     INFO(lanes << " lanes");
     KernelConfig forced = config;
     forced.lanes = lanes;

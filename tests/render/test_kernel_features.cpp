@@ -341,11 +341,14 @@ TEST_CASE("lane_candidates: blocks of lanes and one ray per work-item where a hi
   cpu.native_float_width = 16;
   KernelConfig cfg;  // specialized robust: 16 lanes on this CPU
   REQUIRE(default_lanes(cfg, cpu) == 16);
-  CHECK(lane_candidates(cfg, cpu, true) == std::vector<int>{16, 1});
-  CHECK(lane_candidates(cfg, cpu, false) == std::vector<int>{16});  // every sphere tested: blocks
+  CHECK(lane_candidates(cfg, cpu, true) == std::vector<int>{16, 8, 1});  // (4x4 and 4x2 blocks, one ray)
+  CHECK(lane_candidates(cfg, cpu, false) == std::vector<int>{16});       // every sphere tested: blocks
   KernelConfig eight = cfg;
   eight.lanes = 8;  // --lanes wins: no probe
   CHECK(lane_candidates(eight, cpu, true) == std::vector<int>{8});
+  DeviceInfo narrow = cpu;  // 8-wide floats: blocks of 8 or one ray
+  narrow.native_float_width = 8;
+  CHECK(lane_candidates(cfg, narrow, true) == std::vector<int>{8, 1});
   DeviceInfo gpu;
   gpu.type = "GPU";
   CHECK(lane_candidates(cfg, gpu, true) == std::vector<int>{1});
