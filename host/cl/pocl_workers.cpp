@@ -20,17 +20,23 @@ bool should_pin_pocl_workers(const char* affinity, const char* max_threads, cons
   return true;
 }
 
+std::vector<int> process_cpus() {
+  std::vector<int> cpus;
+#ifdef __linux__
+  cpu_set_t mask;
+  CPU_ZERO(&mask);
+  if (sched_getaffinity(0, sizeof mask, &mask) != 0) return cpus;
+  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+    if (CPU_ISSET(cpu, &mask)) cpus.push_back(cpu);
+#endif
+  return cpus;
+}
+
 void pin_pocl_workers_by_default() {
 #ifdef __linux__
   static std::once_flag once;
   std::call_once(once, [] {
-    cpu_set_t mask;
-    CPU_ZERO(&mask);
-    if (sched_getaffinity(0, sizeof mask, &mask) != 0) return;
-    std::vector<int> allowed;
-    for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
-      if (CPU_ISSET(cpu, &mask)) allowed.push_back(cpu);
-    if (should_pin_pocl_workers(std::getenv("POCL_AFFINITY"), std::getenv("POCL_MAX_PTHREAD_COUNT"), allowed,
+    if (should_pin_pocl_workers(std::getenv("POCL_AFFINITY"), std::getenv("POCL_MAX_PTHREAD_COUNT"), process_cpus(),
                                 sysconf(_SC_NPROCESSORS_ONLN)))
       setenv("POCL_AFFINITY", "1", 0);
   });

@@ -24,6 +24,10 @@ namespace clrt {
 bool should_pin_pocl_workers(const char* affinity, const char* max_threads, const std::vector<int>& allowed,
                              long online);
 
+// The CPUs this process may run on (its affinity mask), ascending; empty
+// where the system does not say (or not Linux).
+std::vector<int> process_cpus();
+
 // Sets POCL_AFFINITY=1 where should_pin_pocl_workers() says so, once, before
 // the process's first OpenCL call (list_devices() calls it); Linux only.
 void pin_pocl_workers_by_default();

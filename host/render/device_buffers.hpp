@@ -31,8 +31,9 @@ class MappedForWrite {
 
 // A read-only scene buffer of `bytes`. On a CPU device that shares the
 // host's memory (PoCL, llvmpipe), the hierarchy's buffers of 8 MiB or more
-// (worth_huge_pages()) are asked for on 2 MiB pages before anything is written to them: a walk
-// reads a node at every step, all over tens of MiB, and with 4 KiB pages
+// (worth_huge_pages()) are asked for on 2 MiB pages before anything is
+// written to them: a walk reads a node at every step, all over tens of MiB,
+// and with 4 KiB pages
 // nearly every read that misses the caches also misses the TLB (Embree asks
 // the same for its hierarchy). The buffer is mapped, its storage advised
 // and touched once per 2 MiB page by every core (a huge page's first touch
@@ -58,8 +59,8 @@ cl::Buffer upload(const cl::Context& ctx, const cl::CommandQueue& q, const std::
 // variant reads them, else one element), and where pack_scene() puts them:
 // where the device shares the host's memory, straight into the mapped
 // buffers, packed on every core (on 2 MiB pages on a CPU from the same
-// size as the hierarchy's: the packing threads' writes are the pages' first touch, so
-// their clearing is shared out as place_on_huge_pages() does; 4 million
+// size as the hierarchy's: the packing threads' writes are the pages' first
+// touch, so their clearing is shared out as place_on_huge_pages() does; 4 million
 // triangles' frame -7%, docs/results/wide-hierarchy.md); else a chunk at a
 // time through a write.
 class TriangleUpload {

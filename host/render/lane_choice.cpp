@@ -13,9 +13,9 @@ namespace clrt {
 std::vector<int> lane_candidates(const KernelConfig& cfg, const DeviceInfo& dev, bool bvh) {
   if (cfg.lanes != 0) return {cfg.lanes};
   const int lanes = default_lanes(cfg, dev);
-  if (lanes == 16 && bvh && cfg.probe_lanes) return {16, 8, 1};
-  if (lanes > 1 && bvh && cfg.probe_lanes) return {lanes, 1};
-  return {lanes};
+  if (lanes == 1 || !bvh || !cfg.probe_lanes) return {lanes};
+  if (lanes == 16) return {16, 8, 1};
+  return {lanes, 1};
 }
 
 std::vector<RowBand> probe_bands(int height) {

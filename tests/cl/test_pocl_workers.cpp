@@ -1,6 +1,5 @@
 // test_pocl_workers.cpp - when clrt pins PoCL's worker threads
 // (cl/pocl_workers.hpp): the rule, and what a clrt process reports.
-#include <sched.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -49,12 +48,8 @@ TEST_CASE("a clrt process sets POCL_AFFINITY=1 where the rule says so, and keeps
   CHECK(reported_affinity("env POCL_AFFINITY=0") == "0");
   CHECK(reported_affinity("env -u POCL_AFFINITY POCL_MAX_PTHREAD_COUNT=1") == "unset");
   // Unset: the rule on this process's CPUs (a child inherits its mask).
-  cpu_set_t mask;
-  CPU_ZERO(&mask);
-  REQUIRE(sched_getaffinity(0, sizeof mask, &mask) == 0);
-  std::vector<int> allowed;
-  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
-    if (CPU_ISSET(cpu, &mask)) allowed.push_back(cpu);
+  const std::vector<int> allowed = process_cpus();
+  REQUIRE(!allowed.empty());
   const bool pinned = should_pin_pocl_workers(nullptr, nullptr, allowed, sysconf(_SC_NPROCESSORS_ONLN));
   CHECK(reported_affinity("env -u POCL_AFFINITY -u POCL_MAX_PTHREAD_COUNT") == (pinned ? "1" : "unset"));
 }
